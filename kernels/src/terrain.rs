@@ -1,0 +1,111 @@
+//! Rough terrain: square periodic tiles of node heights, bilinear between nodes.
+//!
+//! Heights are offsets along the slope normal at nodes of a square grid laid out along the
+//! slope's tangent axes `(u, v)`. Tiles are periodic, so any offset and any distance slid
+//! stays on the tile. The tiles are built once per sweep (by the `touchdown` crate, which
+//! owns the random numbers) and shared read-only by every lane.
+
+/// Precomputed terrain tiles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Terrain {
+    nodes: usize,
+    spacing_m: f64,
+    heights_m: Vec<f64>,
+    height_max_m: f64,
+}
+
+impl Terrain {
+    /// Tiles of `nodes` x `nodes` heights each, row-major (`v` rows of `u` columns),
+    /// tile after tile.
+    ///
+    /// # Panics
+    /// If `heights_m` does not hold a whole number of tiles, or `nodes < 2`.
+    #[must_use]
+    pub fn new(nodes: usize, spacing_m: f64, heights_m: Vec<f64>) -> Terrain {
+        assert!(nodes >= 2 && !heights_m.is_empty() && heights_m.len() % (nodes * nodes) == 0);
+        let height_max_m = heights_m.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        Terrain {
+            nodes,
+            spacing_m,
+            heights_m,
+            height_max_m,
+        }
+    }
+
+    /// Number of tiles.
+    #[must_use]
+    pub fn tiles(&self) -> usize {
+        self.heights_m.len() / (self.nodes * self.nodes)
+    }
+
+    /// Nodes per tile side.
+    #[must_use]
+    pub fn nodes(&self) -> usize {
+        self.nodes
+    }
+
+    /// Distance between nodes, m.
+    #[must_use]
+    pub fn spacing_m(&self) -> f64 {
+        self.spacing_m
+    }
+
+    /// The highest node of all tiles: no point of the surface is higher.
+    #[must_use]
+    pub fn height_max_m(&self) -> f64 {
+        self.height_max_m
+    }
+
+    /// All heights, tile after tile.
+    #[must_use]
+    pub fn heights_m(&self) -> &[f64] {
+        &self.heights_m
+    }
+
+    /// Height and its slopes `(h, dh/du, dh/dv)` at tangent coordinates `(u, v)` of `tile`.
+    #[inline]
+    #[must_use]
+    pub fn height(&self, tile: usize, u: f64, v: f64) -> (f64, f64, f64) {
+        let n = self.nodes;
+        let inv = 1.0 / self.spacing_m;
+        let (fu, fv) = (u * inv, v * inv);
+        let (cu, cv) = (fu.floor(), fv.floor());
+        let (a, b) = (fu - cu, fv - cv);
+        let i0 = (cu as i64).rem_euclid(n as i64) as usize;
+        let j0 = (cv as i64).rem_euclid(n as i64) as usize;
+        let (i1, j1) = ((i0 + 1) % n, (j0 + 1) % n);
+        let t = &self.heights_m[tile * n * n..(tile + 1) * n * n];
+        let (h00, h10, h01, h11) = (t[j0 * n + i0], t[j0 * n + i1], t[j1 * n + i0], t[j1 * n + i1]);
+        let h = h00 * (1.0 - a) * (1.0 - b) + h10 * a * (1.0 - b) + h01 * (1.0 - a) * b + h11 * a * b;
+        let dh_du = ((h10 - h00) * (1.0 - b) + (h11 - h01) * b) * inv;
+        let dh_dv = ((h01 - h00) * (1.0 - a) + (h11 - h10) * a) * inv;
+        (h, dh_du, dh_dv)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bilinear_reproduces_a_plane_and_wraps() {
+        // Heights of the plane h = 0.1 u + 0.2 v sampled on a 4 x 4 tile: inside the first
+        // three cells bilinear interpolation is exact.
+        let n = 4;
+        let s = 0.5;
+        let mut h = vec![0.0; n * n];
+        for j in 0..n {
+            for i in 0..n {
+                h[j * n + i] = 0.1 * i as f64 * s + 0.2 * j as f64 * s;
+            }
+        }
+        let t = Terrain::new(n, s, h);
+        let (z, du, dv) = t.height(0, 0.7, 1.1);
+        assert!((z - (0.07 + 0.22)).abs() < 1e-12);
+        assert!((du - 0.1).abs() < 1e-12 && (dv - 0.2).abs() < 1e-12);
+        // One tile (2 m) further along u is the same point.
+        assert_eq!(t.height(0, 2.7, 1.1), t.height(0, 0.7, 1.1));
+        assert_eq!(t.height(0, -1.3, 1.1), t.height(0, 0.7, 1.1));
+        assert_eq!(t.height_max_m(), 0.1 * 1.5 + 0.2 * 1.5);
+    }
+}

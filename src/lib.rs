@@ -1,0 +1,9 @@
+//! touchdown: Monte Carlo touchdown simulation of legged landers on asteroids.
+//!
+//! `scenario` reads and validates the inputs, `sampling` turns a sample index into inputs,
+//! `reference` is the scalar physics of one lander, `output` writes Arrow files.
+
+pub mod reference;
+pub mod sampling;
+pub mod scenario;
+pub mod terrain;

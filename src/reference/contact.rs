@@ -1,0 +1,108 @@
+//! Leg-surface contact (MODEL.md section 5): a spring-damper normal force that never pulls,
+//! stick-slip Coulomb friction, and the honeycomb damper in series.
+//!
+//! Friction is a tangential spring-damper anchored where the footpad touched down. Its
+//! force is capped at `mu F_N`; while capped the anchor follows the footpad (slip), so a
+//! lander on a slope with `tan(alpha) < mu` holds still instead of creeping. The anchor
+//! is forgotten when the leg lifts off.
+
+use super::honeycomb;
+use super::model::{Contact, Honeycomb};
+use glam::DVec3;
+
+/// What a leg remembers between steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LegState {
+    /// Damper stroke, m.
+    pub stroke_m: f64,
+    /// Energy the damper absorbed, J.
+    pub absorbed_j: f64,
+    /// Friction anchor in I (meaningful while `anchored`).
+    pub anchor_m: DVec3,
+    pub anchored: bool,
+}
+
+impl Default for LegState {
+    fn default() -> Self {
+        LegState {
+            stroke_m: 0.0,
+            absorbed_j: 0.0,
+            anchor_m: DVec3::ZERO,
+            anchored: false,
+        }
+    }
+}
+
+/// The force of one leg in contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LegForce {
+    /// Total force on the lander at the footpad, in I, N.
+    pub force_n: DVec3,
+    /// Normal force magnitude, N.
+    pub normal_n: f64,
+    /// Friction force magnitude, N.
+    pub friction_n: f64,
+}
+
+/// Force of a leg whose footpad at `tip` (in I) with velocity `tip_velocity` penetrates the
+/// surface by `penetration > 0` along the local normal `normal`. `strut_up` is the strut
+/// direction from footpad to hip in I. Updates the friction anchor and the damper.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn leg_force(
+    contact: &Contact,
+    honeycomb: Option<&Honeycomb>,
+    dt: f64,
+    penetration: f64,
+    normal: DVec3,
+    tip: DVec3,
+    tip_velocity: DVec3,
+    strut_up: DVec3,
+    leg: &mut LegState,
+) -> LegForce {
+    let normal_velocity = normal.dot(tip_velocity);
+    let mut normal_n = (contact.stiffness_n_per_m * penetration
+        - contact.damping_n_s_per_m * normal_velocity)
+        .max(0.0);
+
+    if !leg.anchored {
+        leg.anchor_m = tip;
+        leg.anchored = true;
+    }
+    let slip = tip - leg.anchor_m;
+    let slip_t = slip - normal * normal.dot(slip);
+    let velocity_t = tip_velocity - normal * normal_velocity;
+    let mut friction = -slip_t * contact.friction_stiffness_n_per_m
+        - velocity_t * contact.friction_damping_n_s_per_m;
+
+    if let Some(h) = honeycomb {
+        let cap = contact.friction_coefficient * normal_n;
+        let friction_now = friction * (cap / friction.length().max(cap).max(f64::MIN_POSITIVE));
+        let load_n = (normal * normal_n + friction_now).dot(strut_up);
+        let relief = contact.stiffness_n_per_m + contact.damping_n_s_per_m / dt;
+        let (ds, relieved) = honeycomb::crush(
+            h,
+            leg.stroke_m,
+            load_n,
+            normal_n,
+            normal.dot(strut_up),
+            relief,
+        );
+        leg.absorbed_j += honeycomb::absorbed_between(h, leg.stroke_m, leg.stroke_m + ds);
+        leg.stroke_m += ds;
+        normal_n = relieved;
+    }
+
+    let cap = contact.friction_coefficient * normal_n;
+    let magnitude = friction.length();
+    if magnitude > cap {
+        friction *= cap / magnitude;
+        // Slip: move the anchor so that the spring alone would give the capped force.
+        leg.anchor_m = tip + friction / contact.friction_stiffness_n_per_m;
+    }
+    LegForce {
+        force_n: normal * normal_n + friction,
+        normal_n,
+        friction_n: friction.length(),
+    }
+}

@@ -1,0 +1,120 @@
+//! Crushable honeycomb dampers (MODEL.md section 6): a rigid-plastic element in series
+//! with the contact spring-damper of each leg.
+//!
+//! Below the crush force the cartridge is rigid. When the axial load exceeds it, the stroke
+//! grows by the amount `ds` that brings the load back to the crush force. A stroke `ds`
+//! lifts the footpad by `a ds` along the local normal (`a` = normal . strut direction), so
+//! the spring relaxes by `k a ds` and, the footpad moving at `a ds / dt`, the damper by
+//! `c a ds / dt`: solving for `ds` is implicit in both, stable at any damping.
+
+use super::model::Honeycomb;
+
+/// Strut directions closer than this to the surface plane (|a| below it) cannot relieve the
+/// load by crushing; the cartridge then holds.
+pub const MIN_STRUT_NORMAL: f64 = 0.05;
+
+/// The crush force at stroke `s`: the initial peak, then the stage plateaus, N.
+/// Beyond the usable stroke the cartridge is rigid (infinite force).
+#[inline]
+#[must_use]
+pub fn crush_force(h: &Honeycomb, stroke_m: f64) -> f64 {
+    if stroke_m < h.peak_stroke_m {
+        return h.peak_force_n;
+    }
+    h.stages
+        .iter()
+        .find(|(end, _)| stroke_m < *end)
+        .map_or(f64::INFINITY, |(_, f)| *f)
+}
+
+/// The energy absorbed by crushing from stroke `s0` to `s1` (`s0 <= s1 <= usable`): the
+/// integral of the piecewise-constant crush force, J.
+#[must_use]
+pub fn absorbed_between(h: &Honeycomb, s0: f64, s1: f64) -> f64 {
+    let mut energy = 0.0;
+    let mut start = 0.0;
+    let pieces = std::iter::once((h.peak_stroke_m, h.peak_force_n)).chain(h.stages.iter().copied());
+    for (end, force) in pieces {
+        let lo = s0.max(start);
+        let hi = s1.min(end);
+        if hi > lo {
+            energy += force * (hi - lo);
+        }
+        start = start.max(end);
+    }
+    energy
+}
+
+/// The stroke increment that caps the axial load `load_n` at the crush force.
+///
+/// `normal_force_n` is the trial normal force, `strut_normal` the cosine `a` between the
+/// local normal and the strut direction (footpad to hip), `compliance_n_per_m` the
+/// relief `k + c/dt` of the contact per metre of footpad lift. Friction is taken to scale
+/// with the normal force, so the load falls in proportion to it. Returns the increment
+/// and the normal force after it.
+#[inline]
+#[must_use]
+pub fn crush(
+    h: &Honeycomb,
+    stroke_m: f64,
+    load_n: f64,
+    normal_force_n: f64,
+    strut_normal: f64,
+    relief_n_per_m: f64,
+) -> (f64, f64) {
+    let crush_n = crush_force(h, stroke_m);
+    if load_n <= crush_n || strut_normal < MIN_STRUT_NORMAL || normal_force_n <= 0.0 {
+        return (0.0, normal_force_n);
+    }
+    let target_n = normal_force_n * crush_n / load_n;
+    let ds = ((normal_force_n - target_n) / (strut_normal * relief_n_per_m))
+        .min(h.usable_stroke_m() - stroke_m)
+        .max(0.0);
+    (ds, normal_force_n - strut_normal * relief_n_per_m * ds)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_stage(peak: bool) -> Honeycomb {
+        Honeycomb {
+            stages: vec![(0.02, 100.0), (0.05, 300.0)],
+            peak_force_n: if peak { 175.0 } else { 100.0 },
+            peak_stroke_m: if peak { 0.002 } else { 0.0 },
+        }
+    }
+
+    #[test]
+    fn force_follows_the_stages() {
+        let h = two_stage(true);
+        assert_eq!(crush_force(&h, 0.001), 175.0);
+        assert_eq!(crush_force(&h, 0.01), 100.0);
+        assert_eq!(crush_force(&h, 0.03), 300.0);
+        assert_eq!(crush_force(&h, 0.05), f64::INFINITY);
+        assert_eq!(crush_force(&two_stage(false), 0.001), 100.0);
+    }
+
+    #[test]
+    fn absorbed_energy_integrates_the_force() {
+        let h = two_stage(true);
+        // 2 mm at 175 N, 18 mm at 100 N, 30 mm at 300 N.
+        let whole = 0.002 * 175.0 + 0.018 * 100.0 + 0.03 * 300.0;
+        assert!((absorbed_between(&h, 0.0, 0.05) - whole).abs() < 1e-12);
+        let parts = absorbed_between(&h, 0.0, 0.011) + absorbed_between(&h, 0.011, 0.05);
+        assert!((parts - whole).abs() < 1e-12);
+        assert!((absorbed_between(&h, 0.019, 0.021) - (0.001 * 100.0 + 0.001 * 300.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn crush_caps_the_load_and_stops_at_the_usable_stroke() {
+        let h = two_stage(false);
+        // Load 400 N against 100 N: the normal force falls to a quarter.
+        let (ds, f) = crush(&h, 0.01, 400.0, 400.0, 1.0, 5.0e4);
+        assert!((f - 100.0).abs() < 1e-9);
+        assert!((ds - 300.0 / 5.0e4).abs() < 1e-12);
+        let (ds, f) = crush(&h, 0.049, 4.0e4, 4.0e4, 1.0, 5.0e4);
+        assert!((ds - 0.001).abs() < 1e-12 && f > 300.0);
+        assert_eq!(crush(&h, 0.01, 90.0, 90.0, 1.0, 5.0e4), (0.0, 90.0));
+    }
+}

@@ -1,0 +1,18 @@
+//! The scalar reference model: one lander, f64, glam, written like the equations of
+//! MODEL.md. It drives `touchdown trace` and is the oracle the SIMD kernels must agree with.
+//!
+//! Files mirror the kernels: `rigid_body`, `contact`, `honeycomb`, `step`, `outcome`;
+//! `model` holds the parameters and `run` one whole sample.
+
+pub mod contact;
+pub mod honeycomb;
+pub mod model;
+pub mod outcome;
+pub mod rigid_body;
+pub mod run;
+pub mod step;
+
+pub use model::{Model, Surface};
+pub use outcome::{Outcome, Summary};
+pub use run::{initial_state, run};
+pub use step::{State, StepReport};

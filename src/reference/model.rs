@@ -1,0 +1,252 @@
+//! What stays fixed over a sweep (`Model`, derived once from the scenario) and what a
+//! sample fixes (`Surface`, the slope plane and terrain tile it lands on).
+
+use crate::sampling::Sample;
+use crate::scenario::{Geometry, PSI_PA, Scenario, StrutAxes};
+use glam::{DQuat, DVec3};
+use kernels::terrain::Terrain;
+
+/// One leg: its footpad in B with the damper uncrushed, and its strut axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Leg {
+    /// Footpad position in B at zero stroke, m.
+    pub tip_m: DVec3,
+    /// Unit strut axis in B, from hip to footpad; a stroke `s` moves the footpad by `-s u`.
+    pub strut_axis: DVec3,
+}
+
+/// Contact law parameters (MODEL.md section 5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    pub stiffness_n_per_m: f64,
+    pub damping_n_s_per_m: f64,
+    pub friction_coefficient: f64,
+    pub friction_stiffness_n_per_m: f64,
+    pub friction_damping_n_s_per_m: f64,
+}
+
+/// A crushable honeycomb cartridge (MODEL.md section 6), the same in every leg.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Honeycomb {
+    /// Stroke at the end of each stage and the crush force within it, first stage first, N.
+    pub stages: Vec<(f64, f64)>,
+    /// Crush force of a cartridge that is not pre-crushed over its first millimetres, N
+    /// (equal to the first plateau when pre-crushed).
+    pub peak_force_n: f64,
+    /// Stroke over which the initial peak acts, m (0 when pre-crushed).
+    pub peak_stroke_m: f64,
+}
+
+impl Honeycomb {
+    /// The usable stroke: the cartridge is rigid again beyond it.
+    #[must_use]
+    pub fn usable_stroke_m(&self) -> f64 {
+        self.stages.last().map_or(0.0, |s| s.0)
+    }
+}
+
+/// Outcome thresholds in SI units (rad, not deg).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Thresholds {
+    pub rest_speed_m_s: f64,
+    pub rest_rate_rad_s: f64,
+    pub hold_time_s: f64,
+    pub bounce_clearance_m: f64,
+    pub diverged_speed_m_s: f64,
+    pub diverged_rate_rad_s: f64,
+    pub diverged_penetration_m: f64,
+}
+
+/// Everything a sweep holds fixed, in the units the physics uses.
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub gravity_m_s2: f64,
+    pub mass_kg: f64,
+    /// Principal moments of inertia about X_B, Y_B, Z_B.
+    pub inertia_kg_m2: DVec3,
+    /// Legs in counter-clockwise order about Z_B.
+    pub legs: Vec<Leg>,
+    /// Edges of the support polygon: consecutive legs, and the last with the first.
+    pub edges: Vec<[usize; 2]>,
+    pub contact: Contact,
+    pub honeycomb: Option<Honeycomb>,
+    pub terrain: Option<Terrain>,
+    pub step_s: f64,
+    pub flight_step_max_s: f64,
+    pub t_max_s: f64,
+    pub thresholds: Thresholds,
+    pub attitude_surface: bool,
+    pub clearance_m: f64,
+}
+
+impl Model {
+    /// Derives the model of a validated scenario (terrain tiles included).
+    #[must_use]
+    pub fn new(s: &Scenario) -> Model {
+        let tips: Vec<DVec3> = match &s.lander.geometry {
+            Geometry::Regular {
+                legs,
+                footpad_radius_m,
+                cg_height_m,
+                first_leg_azimuth_deg,
+            } => (0..*legs)
+                .map(|i| {
+                    let az = first_leg_azimuth_deg.to_radians()
+                        + std::f64::consts::TAU * i as f64 / *legs as f64;
+                    DVec3::new(footpad_radius_m * az.cos(), footpad_radius_m * az.sin(), -cg_height_m)
+                })
+                .collect(),
+            Geometry::Tips(t) => t.iter().map(|p| DVec3::from_array(*p)).collect(),
+        };
+        let axes: Vec<DVec3> = match &s.damper.strut_axes {
+            StrutAxes::All(a) => vec![DVec3::from_array(*a); tips.len()],
+            StrutAxes::PerLeg(a) => a.iter().map(|p| DVec3::from_array(*p)).collect(),
+        };
+        let mut legs: Vec<(f64, Leg)> = tips
+            .iter()
+            .zip(&axes)
+            .map(|(t, u)| {
+                (
+                    t.y.atan2(t.x),
+                    Leg {
+                        tip_m: *t,
+                        strut_axis: *u,
+                    },
+                )
+            })
+            .collect();
+        legs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let legs: Vec<Leg> = legs.into_iter().map(|(_, l)| l).collect();
+        let n = legs.len();
+        let edges = if n >= 3 {
+            (0..n).map(|i| [i, (i + 1) % n]).collect()
+        } else {
+            Vec::new()
+        };
+        let d = &s.damper;
+        let area_m2 = d.area_cm2 * 1e-4;
+        let honeycomb = d.enabled.then(|| {
+            let mut end = 0.0;
+            let stages: Vec<(f64, f64)> = d
+                .stages
+                .iter()
+                .map(|st| {
+                    end += st.stroke_m;
+                    (end, st.crush_strength_psi * PSI_PA * area_m2)
+                })
+                .collect();
+            let plateau = stages[0].1;
+            let (peak_force_n, peak_stroke_m) = if d.pre_crushed {
+                (plateau, 0.0)
+            } else {
+                (plateau * d.initial_peak_factor, d.initial_peak_stroke_m)
+            };
+            Honeycomb {
+                stages,
+                peak_force_n,
+                peak_stroke_m,
+            }
+        });
+        let o = &s.outcome;
+        Model {
+            gravity_m_s2: s.gravity_m_s2,
+            mass_kg: s.lander.mass_kg,
+            inertia_kg_m2: DVec3::from_array(s.lander.inertia_kg_m2),
+            legs,
+            edges,
+            contact: Contact {
+                stiffness_n_per_m: s.surface.stiffness_n_per_m,
+                damping_n_s_per_m: s.surface.damping_n_s_per_m,
+                friction_coefficient: s.surface.friction_coefficient,
+                friction_stiffness_n_per_m: s.surface.friction_stiffness_n_per_m,
+                friction_damping_n_s_per_m: s.surface.friction_damping_n_s_per_m,
+            },
+            honeycomb,
+            terrain: crate::terrain::build(&s.surface.roughness, s.seed),
+            step_s: s.simulation.step_s,
+            flight_step_max_s: s.simulation.flight_step_max_s,
+            t_max_s: s.simulation.t_max_s,
+            thresholds: Thresholds {
+                rest_speed_m_s: o.rest_speed_m_s,
+                rest_rate_rad_s: o.rest_rate_deg_s.to_radians(),
+                hold_time_s: o.hold_time_s,
+                bounce_clearance_m: o.bounce_clearance_m,
+                diverged_speed_m_s: o.diverged_speed_m_s,
+                diverged_rate_rad_s: o.diverged_rate_deg_s.to_radians(),
+                diverged_penetration_m: o.diverged_penetration_m,
+            },
+            attitude_surface: s.initial.attitude_reference
+                == crate::scenario::AttitudeReference::Surface,
+            clearance_m: s.initial.clearance_m,
+        }
+    }
+
+    /// Largest distance of a footpad from the CG, m.
+    #[must_use]
+    pub fn leg_reach_m(&self) -> f64 {
+        self.legs.iter().map(|l| l.tip_m.length()).fold(0.0, f64::max)
+    }
+}
+
+/// The surface one sample lands on: a plane through the origin with its tangent axes,
+/// and the terrain tile and offset it uses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Surface {
+    /// Unit normal of the slope plane, `(sin a cos b, sin a sin b, cos a)`.
+    pub normal: DVec3,
+    /// Unit downhill direction in the plane.
+    pub tangent_u: DVec3,
+    /// `normal x tangent_u`, horizontal.
+    pub tangent_v: DVec3,
+    pub tile: usize,
+    pub offset_m: [f64; 2],
+}
+
+impl Surface {
+    /// The surface of a sample.
+    #[must_use]
+    pub fn of(sample: &Sample) -> Surface {
+        let (sa, ca) = sample.inputs.slope_deg.to_radians().sin_cos();
+        let (sb, cb) = sample.inputs.downhill_azimuth_deg.to_radians().sin_cos();
+        let normal = DVec3::new(sa * cb, sa * sb, ca);
+        let tangent_u = DVec3::new(ca * cb, ca * sb, -sa);
+        Surface {
+            normal,
+            tangent_u,
+            tangent_v: normal.cross(tangent_u),
+            tile: sample.terrain_tile as usize,
+            offset_m: sample.terrain_offset_m,
+        }
+    }
+
+    /// The rotation that takes `Z_I` onto the surface normal by the shortest arc.
+    #[must_use]
+    pub fn alignment(&self) -> DQuat {
+        DQuat::from_rotation_arc(DVec3::Z, self.normal)
+    }
+
+    /// Height of the terrain at `p` along the normal, and its slopes along the tangents.
+    #[inline]
+    #[must_use]
+    pub fn height(&self, terrain: Option<&Terrain>, p: DVec3) -> (f64, f64, f64) {
+        match terrain {
+            None => (0.0, 0.0, 0.0),
+            Some(t) => t.height(
+                self.tile,
+                self.tangent_u.dot(p) + self.offset_m[0],
+                self.tangent_v.dot(p) + self.offset_m[1],
+            ),
+        }
+    }
+
+    /// Penetration of `p` below the local surface along the local normal (> 0 in
+    /// contact), and that local unit normal.
+    #[inline]
+    #[must_use]
+    pub fn penetration(&self, terrain: Option<&Terrain>, p: DVec3) -> (f64, DVec3) {
+        let (h, dh_du, dh_dv) = self.height(terrain, p);
+        let m = self.normal - self.tangent_u * dh_du - self.tangent_v * dh_dv;
+        let inv = 1.0 / m.length();
+        ((h - self.normal.dot(p)) * inv, m * inv)
+    }
+}

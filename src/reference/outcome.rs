@@ -1,0 +1,242 @@
+//! The outcome of a touchdown (MODEL.md section 8) and the per-sample summary (section 9),
+//! gathered step by step.
+//!
+//! Decision rules, checked after every step in this order:
+//! - `diverged`: a non-finite state, or speed, body rate or penetration beyond the
+//!   thresholds of the scenario;
+//! - `tipped`: the tilt of `Z_B` from the slope normal passes 90 deg (also in flight), or
+//!   the CG is beyond an edge of the support polygon (the vertical through the CG outside
+//!   the edge between two neighbouring footpads, one of them in contact) while rotating away
+//!   from it: gravity then has no way to bring it back;
+//! - `stable`: for `hold_time_s` without a break, CG speed and body rate below the rest
+//!   thresholds, at least three legs (all, with fewer) in contact, the CG inside every
+//!   edge of the support polygon;
+//! - at `t_max`: `sliding` if a leg touches the surface (and not at rest), else `bouncing`.
+
+use super::model::{Model, Surface};
+use super::step::{State, StepReport};
+use glam::DVec3;
+
+/// How a touchdown ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Outcome {
+    Stable,
+    Tipped,
+    Sliding,
+    Bouncing,
+    Diverged,
+}
+
+impl Outcome {
+    /// All outcomes, in code order.
+    pub const ALL: [Outcome; 5] = [
+        Outcome::Stable,
+        Outcome::Tipped,
+        Outcome::Sliding,
+        Outcome::Bouncing,
+        Outcome::Diverged,
+    ];
+
+    /// The name written to files and printed.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Stable => "stable",
+            Outcome::Tipped => "tipped",
+            Outcome::Sliding => "sliding",
+            Outcome::Bouncing => "bouncing",
+            Outcome::Diverged => "diverged",
+        }
+    }
+}
+
+/// Per-leg results of a sample.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LegSummary {
+    pub peak_normal_force_n: f64,
+    pub stroke_m: f64,
+    pub absorbed_j: f64,
+}
+
+/// The results of one sample (MODEL.md section 9).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    pub outcome: Outcome,
+    /// Time at which the outcome was decided (t_max for sliding and bouncing), s.
+    pub decided_s: f64,
+    pub steps: u64,
+    pub final_tilt_deg: f64,
+    pub max_tilt_deg: f64,
+    /// Distance the CG moved along the surface plane, m.
+    pub displacement_m: f64,
+    /// Peak magnitude of the contact acceleration (what an accelerometer at the CG reads), m/s^2.
+    pub peak_acceleration_m_s2: f64,
+    /// Peak magnitude of its component along Z_B (the instruments' shock), m/s^2.
+    pub peak_acceleration_z_body_m_s2: f64,
+    /// Lift-offs after the first contact.
+    pub bounces: u32,
+    /// Time of the first contact, s (None if it never touched).
+    pub first_contact_s: Option<f64>,
+    pub max_penetration_m: f64,
+    pub legs: Vec<LegSummary>,
+}
+
+/// Collects the summary and decides the outcome, one step at a time.
+#[derive(Debug, Clone)]
+pub struct Tracker {
+    start_m: DVec3,
+    rest_s: f64,
+    min_cos_tilt: f64,
+    peak_acceleration: f64,
+    peak_acceleration_z: f64,
+    bounces: u32,
+    touched_since_lift_off: bool,
+    first_contact_s: Option<f64>,
+    max_penetration: f64,
+    peak_normal: Vec<f64>,
+    steps: u64,
+}
+
+impl Tracker {
+    /// A tracker for a sample starting at `start`.
+    #[must_use]
+    pub fn new(model: &Model, start: &State) -> Tracker {
+        Tracker {
+            start_m: start.body.position_m,
+            rest_s: 0.0,
+            min_cos_tilt: 1.0,
+            peak_acceleration: 0.0,
+            peak_acceleration_z: 0.0,
+            bounces: 0,
+            touched_since_lift_off: false,
+            first_contact_s: None,
+            max_penetration: 0.0,
+            peak_normal: vec![0.0; model.legs.len()],
+            steps: 0,
+        }
+    }
+
+    /// Takes in one step (its report and the state after it); returns the outcome once
+    /// decided.
+    pub fn observe(
+        &mut self,
+        model: &Model,
+        surface: &Surface,
+        report: &StepReport,
+        after: &State,
+    ) -> Option<Outcome> {
+        let th = &model.thresholds;
+        self.steps += 1;
+        let body = &report.body;
+        let rotation = glam::DMat3::from_quat(body.attitude);
+        let acceleration = report.force_n / model.mass_kg;
+        self.peak_acceleration = self.peak_acceleration.max(acceleration.length());
+        let z_body = rotation.z_axis;
+        self.peak_acceleration_z = self.peak_acceleration_z.max(acceleration.dot(z_body).abs());
+        let cos_tilt = z_body.dot(surface.normal);
+        self.min_cos_tilt = self.min_cos_tilt.min(cos_tilt);
+
+        let mut contacts = 0;
+        let mut deepest = f64::NEG_INFINITY;
+        for (leg, peak) in report.legs.iter().zip(&mut self.peak_normal) {
+            *peak = peak.max(leg.normal_n);
+            contacts += usize::from(leg.in_contact());
+            deepest = deepest.max(leg.penetration_m);
+        }
+        self.max_penetration = self.max_penetration.max(deepest);
+        if contacts > 0 {
+            self.first_contact_s.get_or_insert(report.t_s);
+            self.touched_since_lift_off = true;
+        } else if self.touched_since_lift_off && -deepest > th.bounce_clearance_m {
+            self.bounces += 1;
+            self.touched_since_lift_off = false;
+        }
+
+        let b = &after.body;
+        let finite = b.position_m.is_finite()
+            && b.velocity_m_s.is_finite()
+            && b.rate_rad_s.is_finite()
+            && b.attitude.is_finite();
+        if !finite
+            || b.velocity_m_s.length() > th.diverged_speed_m_s
+            || b.rate_rad_s.length() > th.diverged_rate_rad_s
+            || deepest > th.diverged_penetration_m
+        {
+            return Some(Outcome::Diverged);
+        }
+
+        // Support polygon, seen along gravity.
+        let mut inside = true;
+        let mut tipping = false;
+        if !model.edges.is_empty() {
+            let centroid = report.legs.iter().map(|l| l.tip_m).sum::<DVec3>() / report.legs.len() as f64;
+            for [i, j] in &model.edges {
+                let (a, c) = (&report.legs[*i], &report.legs[*j]);
+                let edge = c.tip_m - a.tip_m;
+                let mut outward = DVec3::new(edge.y, -edge.x, 0.0);
+                if outward.dot(centroid - a.tip_m) > 0.0 {
+                    outward = -outward;
+                }
+                if outward.dot(body.position_m - a.tip_m) > 0.0 {
+                    inside = false;
+                    let away = outward.dot(body.velocity_m_s - a.tip_velocity_m_s) > 0.0;
+                    tipping |= away && (a.in_contact() || c.in_contact());
+                }
+            }
+        }
+        if cos_tilt < 0.0 || tipping {
+            return Some(Outcome::Tipped);
+        }
+
+        let at_rest = body.velocity_m_s.length() < th.rest_speed_m_s
+            && body.rate_rad_s.length() < th.rest_rate_rad_s
+            && contacts >= model.legs.len().min(3)
+            && inside;
+        self.rest_s = if at_rest { self.rest_s + report.dt_s } else { 0.0 };
+        if self.rest_s >= th.hold_time_s {
+            return Some(Outcome::Stable);
+        }
+        if after.t_s >= model.t_max_s {
+            return Some(if at_rest {
+                Outcome::Stable
+            } else if contacts > 0 {
+                Outcome::Sliding
+            } else {
+                Outcome::Bouncing
+            });
+        }
+        None
+    }
+
+    /// The summary of a sample decided as `outcome` in state `last`.
+    #[must_use]
+    pub fn finish(&self, surface: &Surface, outcome: Outcome, last: &State) -> Summary {
+        let cos_tilt = (last.body.attitude * DVec3::Z).dot(surface.normal);
+        let moved = last.body.position_m - self.start_m;
+        let along = moved - surface.normal * surface.normal.dot(moved);
+        let finite_or_zero = |x: f64| if x.is_finite() { x } else { 0.0 };
+        Summary {
+            outcome,
+            decided_s: last.t_s,
+            steps: self.steps,
+            final_tilt_deg: finite_or_zero(cos_tilt.clamp(-1.0, 1.0).acos().to_degrees()),
+            max_tilt_deg: self.min_cos_tilt.clamp(-1.0, 1.0).acos().to_degrees(),
+            displacement_m: finite_or_zero(along.length()),
+            peak_acceleration_m_s2: finite_or_zero(self.peak_acceleration),
+            peak_acceleration_z_body_m_s2: finite_or_zero(self.peak_acceleration_z),
+            bounces: self.bounces,
+            first_contact_s: self.first_contact_s,
+            max_penetration_m: finite_or_zero(self.max_penetration),
+            legs: self
+                .peak_normal
+                .iter()
+                .zip(&last.legs)
+                .map(|(p, l)| LegSummary {
+                    peak_normal_force_n: finite_or_zero(*p),
+                    stroke_m: finite_or_zero(l.stroke_m),
+                    absorbed_j: finite_or_zero(l.absorbed_j),
+                })
+                .collect(),
+        }
+    }
+}

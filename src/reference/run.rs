@@ -1,0 +1,76 @@
+//! One whole sample: the initial state at the end of the free fall (MODEL.md section 8),
+//! then steps until the outcome is decided.
+
+use super::contact::LegState;
+use super::model::{Model, Surface};
+use super::outcome::{Summary, Tracker};
+use super::rigid_body::Body;
+use super::step::{State, StepReport, step, step_size};
+use crate::sampling::Sample;
+use glam::{DQuat, DVec3, EulerRot};
+
+/// The state at the last moment of the free fall: attitude and velocity against the
+/// attitude reference (local vertical, or the surface normal), the fall speed
+/// `sqrt(2 g0 h)` plus the velocity errors, and the CG placed on the slope normal through
+/// the origin so that the lowest footpad is `clearance_m` above the terrain beneath it.
+#[must_use]
+pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State {
+    let x = &sample.inputs;
+    let reference = if model.attitude_surface {
+        surface.alignment()
+    } else {
+        DQuat::IDENTITY
+    };
+    let attitude = reference
+        * DQuat::from_euler(
+            EulerRot::ZYX,
+            x.yaw_deg.to_radians(),
+            x.pitch_deg.to_radians(),
+            x.roll_deg.to_radians(),
+        );
+    let fall = (2.0 * model.gravity_m_s2 * x.release_height_m).sqrt();
+    let velocity = reference
+        * DVec3::new(
+            x.velocity_error_x_m_s,
+            x.velocity_error_y_m_s,
+            x.velocity_error_z_m_s - fall,
+        );
+    let rate = DVec3::new(x.rate_x_deg_s, x.rate_y_deg_s, x.rate_z_deg_s) * (1.0f64).to_radians();
+    // Height along the normal that puts the lowest footpad `clearance_m` above the terrain;
+    // the terrain under a footpad does not change as the CG moves along the normal.
+    let lift = model
+        .legs
+        .iter()
+        .map(|leg| {
+            let arm = attitude * leg.tip_m;
+            let (h, _, _) = surface.height(model.terrain.as_ref(), arm);
+            h - surface.normal.dot(arm)
+        })
+        .fold(f64::NEG_INFINITY, f64::max);
+    State {
+        t_s: 0.0,
+        body: Body {
+            position_m: surface.normal * (lift + model.clearance_m),
+            velocity_m_s: velocity,
+            attitude,
+            rate_rad_s: rate,
+        },
+        legs: vec![LegState::default(); model.legs.len()],
+    }
+}
+
+/// Runs one sample to its outcome, handing every step to `observe` (for traces).
+pub fn run(model: &Model, sample: &Sample, mut observe: impl FnMut(&StepReport)) -> Summary {
+    let surface = Surface::of(sample);
+    let mut state = initial_state(model, &surface, sample);
+    let mut tracker = Tracker::new(model, &state);
+    let mut report = StepReport::new(model.legs.len());
+    loop {
+        let dt = step_size(model, &surface, &state);
+        step(model, &surface, &mut state, dt, &mut report);
+        observe(&report);
+        if let Some(outcome) = tracker.observe(model, &surface, &report, &state) {
+            return tracker.finish(&surface, outcome, &state);
+        }
+    }
+}

@@ -1,0 +1,169 @@
+//! One fixed step of one lander: every leg's contact, then the rigid body.
+//! The SIMD kernel (`kernels::step`) does the same, in the same order.
+
+use super::contact::{self, LegState};
+use super::model::{Model, Surface};
+use super::rigid_body::{self, Body};
+use glam::{DMat3, DVec3};
+
+/// The state of one lander.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Time since the start of the sample, s.
+    pub t_s: f64,
+    pub body: Body,
+    pub legs: Vec<LegState>,
+}
+
+/// One leg during one step, as computed at the start of the step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LegReport {
+    /// Footpad position in I, m.
+    pub tip_m: DVec3,
+    /// Footpad velocity in I, m/s.
+    pub tip_velocity_m_s: DVec3,
+    /// Depth below the local surface (negative: clearance), m.
+    pub penetration_m: f64,
+    pub normal_n: f64,
+    pub friction_n: f64,
+    /// Damper stroke after the step, m.
+    pub stroke_m: f64,
+}
+
+impl LegReport {
+    /// Whether the leg touches the surface.
+    #[must_use]
+    pub fn in_contact(&self) -> bool {
+        self.penetration_m > 0.0
+    }
+}
+
+/// What a step computed: the state it started from and the forces it applied.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepReport {
+    /// Time at the start of the step, s.
+    pub t_s: f64,
+    /// Length of the step, s.
+    pub dt_s: f64,
+    /// The body at the start of the step.
+    pub body: Body,
+    /// Sum of the leg forces, in I, N.
+    pub force_n: DVec3,
+    /// Their moment about the CG, in B, N m.
+    pub moment_n_m: DVec3,
+    pub legs: Vec<LegReport>,
+}
+
+impl StepReport {
+    /// An empty report for `legs` legs.
+    #[must_use]
+    pub fn new(legs: usize) -> StepReport {
+        StepReport {
+            t_s: 0.0,
+            dt_s: 0.0,
+            body: Body {
+                position_m: DVec3::ZERO,
+                velocity_m_s: DVec3::ZERO,
+                attitude: glam::DQuat::IDENTITY,
+                rate_rad_s: DVec3::ZERO,
+            },
+            force_n: DVec3::ZERO,
+            moment_n_m: DVec3::ZERO,
+            legs: vec![LegReport::default(); legs],
+        }
+    }
+}
+
+/// Advances `state` by `dt`, writing what it computed to `report`.
+pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report: &mut StepReport) {
+    let body = state.body;
+    let rotation = DMat3::from_quat(body.attitude);
+    let rate_i = rotation * body.rate_rad_s;
+    let mut force_n = DVec3::ZERO;
+    let mut moment_n_m = DVec3::ZERO;
+    for ((leg, leg_state), out) in model.legs.iter().zip(&mut state.legs).zip(&mut report.legs) {
+        let tip_b = leg.tip_m - leg.strut_axis * leg_state.stroke_m;
+        let arm = rotation * tip_b;
+        let tip = body.position_m + arm;
+        let tip_velocity = body.velocity_m_s + rate_i.cross(arm);
+        let (penetration, normal) = surface.penetration(model.terrain.as_ref(), tip);
+        let f = if penetration > 0.0 {
+            contact::leg_force(
+                &model.contact,
+                model.honeycomb.as_ref(),
+                dt,
+                penetration,
+                normal,
+                tip,
+                tip_velocity,
+                -(rotation * leg.strut_axis),
+                leg_state,
+            )
+        } else {
+            leg_state.anchored = false;
+            contact::LegForce {
+                force_n: DVec3::ZERO,
+                normal_n: 0.0,
+                friction_n: 0.0,
+            }
+        };
+        force_n += f.force_n;
+        moment_n_m += tip_b.cross(rotation.transpose() * f.force_n);
+        *out = LegReport {
+            tip_m: tip,
+            tip_velocity_m_s: tip_velocity,
+            penetration_m: penetration,
+            normal_n: f.normal_n,
+            friction_n: f.friction_n,
+            stroke_m: leg_state.stroke_m,
+        };
+    }
+    report.t_s = state.t_s;
+    report.dt_s = dt;
+    report.body = body;
+    report.force_n = force_n;
+    report.moment_n_m = moment_n_m;
+    rigid_body::integrate(
+        &mut state.body,
+        model.mass_kg,
+        model.inertia_kg_m2,
+        model.gravity_m_s2,
+        force_n,
+        moment_n_m,
+        dt,
+    );
+    state.t_s += dt;
+}
+
+/// The step to take from `state`: `step_s` near the surface; in free flight up to
+/// `flight_step_max_s`, but only half the time in which any footpad could reach the highest
+/// point of the terrain, moving at the CG speed plus rate times leg reach and accelerated by
+/// gravity. Never beyond `t_max_s`.
+#[must_use]
+pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
+    let remaining = model.t_max_s - state.t_s;
+    let mut dt = model.step_s;
+    if model.flight_step_max_s > model.step_s {
+        let body = &state.body;
+        let rotation = DMat3::from_quat(body.attitude);
+        let top = model.terrain.as_ref().map_or(0.0, |t| t.height_max_m());
+        let clearance = model
+            .legs
+            .iter()
+            .zip(&state.legs)
+            .map(|(leg, ls)| {
+                let tip = body.position_m + rotation * (leg.tip_m - leg.strut_axis * ls.stroke_m);
+                surface.normal.dot(tip) - top
+            })
+            .fold(f64::INFINITY, f64::min);
+        if clearance > 0.0 {
+            let speed = body.velocity_m_s.length() + body.rate_rad_s.length() * model.leg_reach_m();
+            // Time to fall `clearance` from `speed` under g: the root of
+            // speed t + g t^2 / 2 = clearance, in a form that holds for g = 0.
+            let reach = 2.0 * clearance
+                / (speed + (speed * speed + 2.0 * model.gravity_m_s2 * clearance).sqrt());
+            dt = (0.5 * reach).clamp(model.step_s, model.flight_step_max_s);
+        }
+    }
+    dt.min(remaining)
+}

@@ -1,0 +1,1 @@
+//! Analytic validation of the reference model (MODEL.md section 12).
