@@ -3,6 +3,8 @@
 //! `scenario` reads and validates the inputs, `sampling` turns a sample index into inputs,
 //! `reference` is the scalar physics of one lander, `output` writes Arrow files.
 
+pub mod cli;
+pub mod output;
 pub mod reference;
 pub mod sampling;
 pub mod scenario;

@@ -22,13 +22,18 @@ pub fn build(roughness: &Roughness, seed: u64) -> Option<Terrain> {
     let mut heights = Vec::with_capacity(n * n * roughness.tiles);
     for tile in 0..roughness.tiles {
         // A stream per tile, apart from the per-sample streams by the constant.
-        let mut rng =
-            Xoshiro256PlusPlus::seed_from_u64(splitmix64(seed ^ 0x7E44_A1F0_0000_0000 ^ tile as u64));
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(splitmix64(
+            seed ^ 0x7E44_A1F0_0000_0000 ^ tile as u64,
+        ));
         let noise: Vec<f64> = (0..n * n).map(|_| standard_normal(&mut rng)).collect();
         let mut h = blur_periodic(&noise, n, &kernel);
         let mean = h.iter().sum::<f64>() / h.len() as f64;
         let rms = (h.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / h.len() as f64).sqrt();
-        let scale = if rms > 0.0 { roughness.rms_height_m / rms } else { 0.0 };
+        let scale = if rms > 0.0 {
+            roughness.rms_height_m / rms
+        } else {
+            0.0
+        };
         for x in &mut h {
             *x = (*x - mean) * scale;
         }
@@ -129,6 +134,9 @@ mod tests {
             }
         }
         let rho = c / v;
-        assert!((rho - (-1.0f64 / 36.0).exp()).abs() < 0.02, "lag-1 correlation {rho}");
+        assert!(
+            (rho - (-1.0f64 / 36.0).exp()).abs() < 0.02,
+            "lag-1 correlation {rho}"
+        );
     }
 }

@@ -75,8 +75,14 @@ impl Terrain {
         let j0 = (cv as i64).rem_euclid(n as i64) as usize;
         let (i1, j1) = ((i0 + 1) % n, (j0 + 1) % n);
         let t = &self.heights_m[tile * n * n..(tile + 1) * n * n];
-        let (h00, h10, h01, h11) = (t[j0 * n + i0], t[j0 * n + i1], t[j1 * n + i0], t[j1 * n + i1]);
-        let h = h00 * (1.0 - a) * (1.0 - b) + h10 * a * (1.0 - b) + h01 * (1.0 - a) * b + h11 * a * b;
+        let (h00, h10, h01, h11) = (
+            t[j0 * n + i0],
+            t[j0 * n + i1],
+            t[j1 * n + i0],
+            t[j1 * n + i1],
+        );
+        let h =
+            h00 * (1.0 - a) * (1.0 - b) + h10 * a * (1.0 - b) + h01 * (1.0 - a) * b + h11 * a * b;
         let dh_du = ((h10 - h00) * (1.0 - b) + (h11 - h01) * b) * inv;
         let dh_dv = ((h01 - h00) * (1.0 - a) + (h11 - h10) * a) * inv;
         (h, dh_du, dh_dv)

@@ -93,7 +93,11 @@ impl Model {
                 .map(|i| {
                     let az = first_leg_azimuth_deg.to_radians()
                         + std::f64::consts::TAU * i as f64 / *legs as f64;
-                    DVec3::new(footpad_radius_m * az.cos(), footpad_radius_m * az.sin(), -cg_height_m)
+                    DVec3::new(
+                        footpad_radius_m * az.cos(),
+                        footpad_radius_m * az.sin(),
+                        -cg_height_m,
+                    )
                 })
                 .collect(),
             Geometry::Tips(t) => t.iter().map(|p| DVec3::from_array(*p)).collect(),
@@ -184,7 +188,10 @@ impl Model {
     /// Largest distance of a footpad from the CG, m.
     #[must_use]
     pub fn leg_reach_m(&self) -> f64 {
-        self.legs.iter().map(|l| l.tip_m.length()).fold(0.0, f64::max)
+        self.legs
+            .iter()
+            .map(|l| l.tip_m.length())
+            .fold(0.0, f64::max)
     }
 }
 

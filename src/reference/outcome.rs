@@ -169,7 +169,8 @@ impl Tracker {
         let mut inside = true;
         let mut tipping = false;
         if !model.edges.is_empty() {
-            let centroid = report.legs.iter().map(|l| l.tip_m).sum::<DVec3>() / report.legs.len() as f64;
+            let centroid =
+                report.legs.iter().map(|l| l.tip_m).sum::<DVec3>() / report.legs.len() as f64;
             for [i, j] in &model.edges {
                 let (a, c) = (&report.legs[*i], &report.legs[*j]);
                 let edge = c.tip_m - a.tip_m;
@@ -192,7 +193,11 @@ impl Tracker {
             && body.rate_rad_s.length() < th.rest_rate_rad_s
             && contacts >= model.legs.len().min(3)
             && inside;
-        self.rest_s = if at_rest { self.rest_s + report.dt_s } else { 0.0 };
+        self.rest_s = if at_rest {
+            self.rest_s + report.dt_s
+        } else {
+            0.0
+        };
         if self.rest_s >= th.hold_time_s {
             return Some(Outcome::Stable);
         }

@@ -49,7 +49,10 @@ impl fmt::Display for ScenarioError {
                 key,
                 value,
                 allowed,
-            } => write!(f, "scenario key `{key}` = {value} is not allowed: expected {allowed}"),
+            } => write!(
+                f,
+                "scenario key `{key}` = {value} is not allowed: expected {allowed}"
+            ),
             ScenarioError::UnknownKey { key, hint, known } => write!(
                 f,
                 "scenario key `{key}` is unknown{hint}; this table knows: {known}"
@@ -68,7 +71,12 @@ pub enum Dist {
     /// Uniform on `[min, max]`.
     Uniform { min: f64, max: f64 },
     /// Normal, truncated to `[min, max]` (infinite bounds: not truncated).
-    Normal { mean: f64, sd: f64, min: f64, max: f64 },
+    Normal {
+        mean: f64,
+        sd: f64,
+        min: f64,
+        max: f64,
+    },
     /// `count` evenly spaced values from `min` to `max`; several grid inputs form their
     /// cartesian product, the last one varying fastest with the sample index.
     Grid { min: f64, max: f64, count: u64 },
@@ -418,9 +426,9 @@ impl Scenario {
 
     /// Reads and validates a scenario from TOML text; missing keys take their defaults.
     pub fn from_toml(text: &str) -> Result<Scenario, ScenarioError> {
-        let table: toml::Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| ScenarioError::Syntax(e.to_string().trim().to_string()))?;
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+            ScenarioError::Syntax(e.to_string().trim().to_string())
+        })?;
         let d = Scenario::default();
         let mut top = Reader::new("", table);
         let seed = top.integer("seed", d.seed as i64, 0, i64::MAX)? as u64;
@@ -486,7 +494,11 @@ fn read_lander(top: &mut Reader, d: &Lander) -> Result<Lander, ScenarioError> {
         Some(v) => {
             let i = r.vec3("inertia_kg_m2", &v)?;
             if i.iter().any(|x| *x <= 0.0) {
-                return Err(r.error("inertia_kg_m2", &v, "three principal moments greater than 0"));
+                return Err(r.error(
+                    "inertia_kg_m2",
+                    &v,
+                    "three principal moments greater than 0",
+                ));
             }
             // A rigid body's principal moments obey the triangle inequality; equality is a
             // flat plate. The relative slack absorbs rounding in values typed from decimals.
@@ -512,7 +524,12 @@ fn read_lander(top: &mut Reader, d: &Lander) -> Result<Lander, ScenarioError> {
     else {
         unreachable!("the default lander is regular")
     };
-    let regular_keys = ["legs", "footpad_radius_m", "cg_height_m", "first_leg_azimuth_deg"];
+    let regular_keys = [
+        "legs",
+        "footpad_radius_m",
+        "cg_height_m",
+        "first_leg_azimuth_deg",
+    ];
     let geometry = match r.take("leg_tips_m") {
         Some(v) => {
             if let Some(k) = regular_keys.iter().find(|k| r.has(k)) {
@@ -620,11 +637,7 @@ fn read_damper(top: &mut Reader, d: &Damper) -> Result<Damper, ScenarioError> {
                 .iter()
                 .find(|k| r.has(k))
             {
-                return Err(r.error(
-                    "stages",
-                    &v,
-                    &format!("either `stages` or `{k}`, not both"),
-                ));
+                return Err(r.error("stages", &v, &format!("either `stages` or `{k}`, not both")));
             }
             let allowed = "a non-empty array of { stroke_m = ..., crush_strength_psi = ... }";
             let Value::Array(a) = v.clone() else {
@@ -688,7 +701,8 @@ fn read_damper(top: &mut Reader, d: &Damper) -> Result<Damper, ScenarioError> {
                     StrutAxes::PerLeg(axes)
                 }
                 _ => StrutAxes::All(
-                    unit(r.vec3("strut_axis", &v)?).ok_or_else(|| r.error("strut_axis", &v, allowed))?,
+                    unit(r.vec3("strut_axis", &v)?)
+                        .ok_or_else(|| r.error("strut_axis", &v, allowed))?,
                 ),
             }
         }
@@ -810,7 +824,8 @@ fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, Sc
                     }
                     // Truncation by rejection: the interval must hold a fair share of the
                     // normal's mass, or drawing would take too long.
-                    let phi = |x: f64| 0.5 * libm::erfc(-(x - mean) / (sd * std::f64::consts::SQRT_2));
+                    let phi =
+                        |x: f64| 0.5 * libm::erfc(-(x - mean) / (sd * std::f64::consts::SQRT_2));
                     if phi(max) - phi(min) < 0.01 {
                         return Err(r.error(
                             key,
@@ -841,7 +856,10 @@ fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, Sc
     let (lo, hi) = dist.support();
     if !(range.holds(lo) && range.holds(hi)) {
         let why = if lo.is_infinite() || hi.is_infinite() {
-            format!("{}; an untruncated normal reaches any value, so give min and max", range.text)
+            format!(
+                "{}; an untruncated normal reaches any value, so give min and max",
+                range.text
+            )
         } else {
             range.text.to_string()
         };
@@ -858,10 +876,11 @@ fn read_initial(top: &mut Reader, d: &Initial) -> Result<Initial, ScenarioError>
         AttitudeReference::Vertical => "vertical",
         AttitudeReference::Surface => "surface",
     };
-    let attitude_reference = match r.word("attitude_reference", reference, &["vertical", "surface"])? {
-        "surface" => AttitudeReference::Surface,
-        _ => AttitudeReference::Vertical,
-    };
+    let attitude_reference =
+        match r.word("attitude_reference", reference, &["vertical", "surface"])? {
+            "surface" => AttitudeReference::Surface,
+            _ => AttitudeReference::Vertical,
+        };
     let clearance_m = r.non_negative("clearance_m", d.clearance_m)?;
     r.finish()?;
     Ok(Initial {
@@ -923,7 +942,10 @@ mod tests {
 
     #[test]
     fn default_file_is_the_default_scenario() {
-        assert_eq!(Scenario::from_toml(DEFAULT_TOML).unwrap(), Scenario::default());
+        assert_eq!(
+            Scenario::from_toml(DEFAULT_TOML).unwrap(),
+            Scenario::default()
+        );
     }
 
     #[test]

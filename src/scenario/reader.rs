@@ -94,7 +94,11 @@ impl Reader {
         }
     }
 
-    pub(crate) fn positive(&mut self, key: &'static str, default: f64) -> Result<f64, ScenarioError> {
+    pub(crate) fn positive(
+        &mut self,
+        key: &'static str,
+        default: f64,
+    ) -> Result<f64, ScenarioError> {
         self.f64_where(key, default, "a number greater than 0", |x| x > 0.0)
     }
 
@@ -159,7 +163,9 @@ impl Reader {
             Value::Array(a) if a.len() == 3 => {
                 let mut out = [0.0; 3];
                 for (o, x) in out.iter_mut().zip(a) {
-                    *o = self.number(key, x).map_err(|_| self.error(key, v, allowed))?;
+                    *o = self
+                        .number(key, x)
+                        .map_err(|_| self.error(key, v, allowed))?;
                 }
                 Ok(out)
             }
@@ -248,7 +254,10 @@ mod tests {
         assert_eq!(edit_distance("mass_kg", "mass_kg"), 0);
         assert_eq!(edit_distance("mas_kg", "mass_kg"), 1);
         assert_eq!(edit_distance("mass_gk", "mass_kg"), 2);
-        assert_eq!(closest("mas_kg", &["mass_kg", "inertia_kg_m2"]), Some("mass_kg"));
+        assert_eq!(
+            closest("mas_kg", &["mass_kg", "inertia_kg_m2"]),
+            Some("mass_kg")
+        );
         assert_eq!(closest("colour", &["mass_kg"]), None);
     }
 }

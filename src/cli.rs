@@ -1,0 +1,185 @@
+//! The command line: raw flags (clap) apart from the work they start.
+
+use crate::output::trace::{self, TraceInfo};
+use crate::reference::{self, Model, Summary};
+use crate::sampling::{self, Sample};
+use crate::scenario::{DEFAULT_TOML, INPUT_FIELDS, Scenario};
+use clap::{Parser, Subcommand};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Monte Carlo touchdown simulation of legged landers on asteroids.
+#[derive(Parser, Debug)]
+#[command(name = "touchdown", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Print the default scenario as a commented TOML file to edit.
+    Scenario,
+    /// Run one sample with the reference model and write its time history.
+    Trace(TraceArgs),
+}
+
+/// Flags of `touchdown trace`.
+#[derive(clap::Args, Debug)]
+pub struct TraceArgs {
+    /// Scenario file (TOML); without it, the default sweep of MODEL.md section 11.
+    #[arg(long, value_name = "FILE")]
+    pub scenario: Option<PathBuf>,
+    /// Seed of the sweep (overrides the scenario's `seed`).
+    #[arg(long, value_name = "S", value_parser = parse_count)]
+    pub seed: Option<u64>,
+    /// Index of the sample to run (accepts 1e6, 250000, 2.5e5).
+    #[arg(long, value_name = "I", default_value = "0", value_parser = parse_count)]
+    pub sample: u64,
+    /// Arrow IPC file to write the time history to.
+    #[arg(long, value_name = "PATH", default_value = "trace.arrow")]
+    pub out: PathBuf,
+    /// Write one row every N steps.
+    #[arg(long, value_name = "N", default_value = "1", value_parser = parse_every)]
+    pub every: u64,
+}
+
+/// Parses a whole number written as `250000`, `1e6` or `2.5e5`.
+pub fn parse_count(s: &str) -> Result<u64, String> {
+    let t = s.trim().replace('_', "");
+    if let Ok(n) = t.parse::<u64>() {
+        return Ok(n);
+    }
+    let bad = || format!("{s:?} is not a whole number (examples: 250000, 1e6, 2.5e5)");
+    let x: f64 = t.parse().map_err(|_| bad())?;
+    if !x.is_finite() || x < 0.0 || x.fract() != 0.0 || x > 2f64.powi(63) {
+        return Err(bad());
+    }
+    Ok(x as u64)
+}
+
+fn parse_every(s: &str) -> Result<u64, String> {
+    match parse_count(s)? {
+        0 => Err("must be at least 1".to_string()),
+        n => Ok(n),
+    }
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Scenario => {
+            print_out(DEFAULT_TOML);
+            Ok(())
+        }
+        Command::Trace(args) => run_trace(&args),
+    }
+}
+
+/// A scenario from its file (or the default) with the command line's seed applied, and the
+/// text to store as its provenance.
+fn load_scenario(path: Option<&PathBuf>, seed: Option<u64>) -> anyhow::Result<(Scenario, String)> {
+    let (mut scenario, text) = match path {
+        None => (Scenario::default(), DEFAULT_TOML.to_string()),
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .map_err(|e| anyhow::anyhow!("cannot read scenario file {}: {e}", p.display()))?;
+            (Scenario::from_toml(&text)?, text)
+        }
+    };
+    if let Some(s) = seed {
+        scenario.seed = s;
+    }
+    Ok((scenario, text))
+}
+
+fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
+    crate::output::check_output_path(&args.out)?;
+    let (scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+    let model = Model::new(&scenario);
+    let sample = sampling::sample(&scenario, args.sample);
+    let summary = reference::run(&model, &sample, |_| {});
+    let info = TraceInfo {
+        scenario_toml: &text,
+        sweep_seed: scenario.seed,
+        sample: &sample,
+        summary: &summary,
+    };
+    let rows = trace::write(&args.out, &model, &info, args.every)?;
+    let mut text = describe(&scenario, &sample, &summary);
+    text.push_str(&format!(
+        "\nwrote {}: {rows} rows (every {} of {} steps)\n",
+        args.out.display(),
+        args.every,
+        summary.steps
+    ));
+    print_out(&text);
+    Ok(())
+}
+
+/// The inputs and summary of a sample, for people.
+#[must_use]
+pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
+    let mut t = format!(
+        "sample {} of seed {} (sample seed {:#018x})\n\ninputs\n",
+        sample.index, scenario.seed, sample.seed
+    );
+    for ((name, unit), value) in INPUT_FIELDS.iter().zip(sample.inputs.to_array()) {
+        t.push_str(&format!("  {name:<24} {value:>12.6} {unit}\n"));
+    }
+    if scenario.surface.roughness.rms_height_m > 0.0 {
+        t.push_str(&format!(
+            "  {:<24} {:>12} (offset {:.3} m, {:.3} m)\n",
+            "terrain_tile",
+            sample.terrain_tile,
+            sample.terrain_offset_m[0],
+            sample.terrain_offset_m[1]
+        ));
+    }
+    let first = s
+        .first_contact_s
+        .map_or("never".to_string(), |t| format!("{t:.3} s"));
+    t.push_str(&format!(
+        "\nsummary\n  {:<24} {} at {:.3} s ({} steps)\n  {:<24} {first}\n  {:<24} {}\n  {:<24} {:.2} deg (final {:.2} deg)\n  {:<24} {:.4} m\n  {:<24} {:.3} m/s^2 (along Z_B {:.3} m/s^2)\n  {:<24} {:.2} mm\n",
+        "outcome", s.outcome.name(), s.decided_s, s.steps,
+        "first contact",
+        "bounces", s.bounces,
+        "max tilt from normal", s.max_tilt_deg, s.final_tilt_deg,
+        "displacement on surface", s.displacement_m,
+        "peak acceleration", s.peak_acceleration_m_s2, s.peak_acceleration_z_body_m_s2,
+        "max penetration", s.max_penetration_m * 1e3,
+    ));
+    t.push_str("\n  leg  peak normal force N   stroke mm   absorbed J\n");
+    for (k, l) in s.legs.iter().enumerate() {
+        t.push_str(&format!(
+            "  {k:>3}  {:>19.2}   {:>9.3}   {:>10.4}\n",
+            l.peak_normal_force_n,
+            l.stroke_m * 1e3,
+            l.absorbed_j
+        ));
+    }
+    t
+}
+
+/// Writes to stdout; a closed pipe (`| head`) is not an error.
+fn print_out(text: &str) {
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_parse_in_plain_and_scientific_notation() {
+        assert_eq!(parse_count("250000"), Ok(250_000));
+        assert_eq!(parse_count("1e6"), Ok(1_000_000));
+        assert_eq!(parse_count("2.5e5"), Ok(250_000));
+        assert_eq!(parse_count("1_000"), Ok(1000));
+        for bad in ["-1", "1.5", "abc", "1e30", "nan", ""] {
+            assert!(parse_count(bad).is_err(), "{bad}");
+        }
+    }
+}
