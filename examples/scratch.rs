@@ -1,38 +1,51 @@
-use touchdown::{
-    reference, sampling,
-    scenario::{Dist, Scenario},
-};
+use touchdown::{reference, scenario::Scenario, sweep};
 fn main() {
-    let mut s = Scenario::default();
-    let args: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|a| a.parse().unwrap())
-        .collect();
-    s.inputs.slope_deg = Dist::Uniform {
-        min: args[0],
-        max: args[1],
-    };
-    s.inputs.release_height_m = Dist::Uniform {
-        min: args[2],
-        max: args[3],
-    };
+    let s = Scenario::default();
     let m = reference::Model::new(&s);
-    let mut counts = std::collections::BTreeMap::new();
-    let mut steps = 0;
-    let mut bounces = 0;
-    let mut tdec = 0.0;
-    for i in 0..300 {
-        let smp = sampling::sample(&s, i);
-        let sum = reference::run(&m, &smp, |_| {});
-        steps += sum.steps;
-        bounces += sum.bounces;
-        tdec += sum.decided_s;
-        *counts.entry(sum.outcome.name()).or_insert(0) += 1;
+    let n: u64 = std::env::args()
+        .nth(1)
+        .map(|a| a.parse().unwrap())
+        .unwrap_or(2000);
+    let t = std::time::Instant::now();
+    let mut rows = Vec::new();
+    let stats = sweep::run(&s, &m, 0..n, 512, |r| {
+        rows.extend(r);
+        Ok(())
+    })
+    .unwrap();
+    let tk = t.elapsed();
+    let steps: u64 = rows.iter().map(|r| r.summary.steps).sum();
+    println!(
+        "kernel: {n} samples in {tk:?}, {:.1} ns/lander-step (wall, all threads), occupancy {:.3}, steps/sample {}",
+        tk.as_nanos() as f64 / steps as f64,
+        stats.occupancy(),
+        steps / n
+    );
+    let t = std::time::Instant::now();
+    let mut mism = 0;
+    let mut maxdt = 0.0f64;
+    let mut maxtilt = 0.0f64;
+    for r in &rows {
+        let refs = reference::run(&m, &r.sample, |_| {});
+        if refs.outcome != r.summary.outcome {
+            mism += 1;
+            if mism < 6 {
+                println!(
+                    "mismatch {}: ref {:?} {} kern {:?} {}",
+                    r.sample.index,
+                    refs.outcome,
+                    refs.decided_s,
+                    r.summary.outcome,
+                    r.summary.decided_s
+                );
+            }
+        } else {
+            maxdt = maxdt.max((refs.decided_s - r.summary.decided_s).abs());
+            maxtilt = maxtilt.max((refs.max_tilt_deg - r.summary.max_tilt_deg).abs());
+        }
     }
     println!(
-        "{args:?} {counts:?} steps/sample {} bounces/sample {} t/sample {}",
-        steps / 300,
-        bounces as f64 / 300.0,
-        tdec / 300.0
+        "reference: {:?}; mismatches {mism}/{n}, max |dt_decided| {maxdt}, max |d max tilt| {maxtilt}",
+        t.elapsed()
     );
 }

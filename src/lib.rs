@@ -8,4 +8,5 @@ pub mod output;
 pub mod reference;
 pub mod sampling;
 pub mod scenario;
+pub mod sweep;
 pub mod terrain;

@@ -89,6 +89,26 @@ impl Terrain {
     }
 }
 
+/// Height and slopes of the terrain under every lane: one scalar lookup per lane (the
+/// nodes of different lanes are far apart in memory, so a gather is all SIMD could do).
+#[inline]
+#[must_use]
+pub fn height_lanes(
+    terrain: &Terrain,
+    tile: &[usize; crate::lane::LANES],
+    u: crate::lane::Lane,
+    v: crate::lane::Lane,
+) -> (crate::lane::Lane, crate::lane::Lane, crate::lane::Lane) {
+    let (u, v) = (u.to_array(), v.to_array());
+    let mut h = [0.0; crate::lane::LANES];
+    let mut du = [0.0; crate::lane::LANES];
+    let mut dv = [0.0; crate::lane::LANES];
+    for i in 0..crate::lane::LANES {
+        (h[i], du[i], dv[i]) = terrain.height(tile[i], u[i], v[i]);
+    }
+    (h.into(), du.into(), dv.into())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

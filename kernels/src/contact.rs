@@ -1,0 +1,70 @@
+//! Leg-surface contact over lanes: the reference's `contact::leg_force`, in the same order,
+//! with `select` where the reference branches.
+
+use crate::block::LegLanes;
+use crate::honeycomb;
+use crate::lane::{Lane, splat};
+use crate::params::Params;
+use crate::vec3::Vec3;
+
+/// The force of one leg on every lane (zero where `contact` is false), with its normal and
+/// friction magnitudes. Updates the friction anchor and the damper of the leg.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn leg_force(
+    p: &Params,
+    dt: Lane,
+    contact: Lane,
+    penetration: Lane,
+    normal: Vec3,
+    tip: Vec3,
+    tip_velocity: Vec3,
+    strut_up: Vec3,
+    leg: &mut LegLanes,
+) -> (Vec3, Lane, Lane) {
+    let zero = splat(0.0);
+    let normal_velocity = normal.dot(tip_velocity);
+    let mut normal_n =
+        (p.stiffness_n_per_m * penetration - p.damping_n_s_per_m * normal_velocity).max(zero);
+
+    leg.anchor_m = Vec3::select(contact & !leg.anchored, tip, leg.anchor_m);
+    leg.anchored = contact;
+    let slip = tip - leg.anchor_m;
+    let slip_t = slip - normal * normal.dot(slip);
+    let velocity_t = tip_velocity - normal * normal_velocity;
+    let mut friction =
+        -(slip_t * p.friction_stiffness_n_per_m) - velocity_t * p.friction_damping_n_s_per_m;
+
+    if let Some(h) = &p.honeycomb {
+        let cap = p.friction_coefficient * normal_n;
+        let friction_now =
+            friction * (cap / friction.length().max(cap).max(splat(f64::MIN_POSITIVE)));
+        let load_n = (normal * normal_n + friction_now).dot(strut_up);
+        let relief = p.stiffness_n_per_m + p.damping_n_s_per_m / dt;
+        let (ds, relieved) = honeycomb::crush(
+            h,
+            contact,
+            leg.stroke_m,
+            load_n,
+            normal_n,
+            normal.dot(strut_up),
+            relief,
+        );
+        leg.absorbed_j += honeycomb::absorbed_between(h, leg.stroke_m, leg.stroke_m + ds);
+        leg.stroke_m += ds;
+        normal_n = relieved;
+    }
+
+    let cap = p.friction_coefficient * normal_n;
+    let magnitude = friction.length();
+    let slips = magnitude.simd_gt(cap);
+    friction = friction * slips.select(cap / magnitude, splat(1.0));
+    leg.anchor_m = Vec3::select(
+        slips & contact,
+        tip + friction * (splat(1.0) / p.friction_stiffness_n_per_m),
+        leg.anchor_m,
+    );
+    let normal_n = contact.select(normal_n, zero);
+    let force = Vec3::select(contact, normal * normal_n + friction, Vec3::ZERO);
+    (force, normal_n, contact.select(friction.length(), zero))
+}

@@ -1,0 +1,65 @@
+//! Crushable honeycomb dampers, over lanes: the same law as the reference's `honeycomb`
+//! (rigid-plastic in series with the contact, implicit stroke increment).
+
+use crate::lane::{Lane, splat};
+use crate::params::HoneycombParams;
+
+/// Strut directions closer than this to the surface plane cannot relieve the load.
+pub const MIN_STRUT_NORMAL: f64 = 0.05;
+
+/// The crush force at stroke `s`: the initial peak, then the stage plateaus; infinite
+/// beyond the usable stroke.
+#[inline(always)]
+#[must_use]
+pub fn crush_force(h: &HoneycombParams, stroke_m: Lane) -> Lane {
+    let mut force = splat(f64::INFINITY);
+    for (end, f) in h.stages.iter().rev() {
+        force = stroke_m.simd_lt(*end).select(*f, force);
+    }
+    stroke_m
+        .simd_lt(h.peak_stroke_m)
+        .select(h.peak_force_n, force)
+}
+
+/// The energy absorbed from stroke `s0` to `s1`: the integral of the crush force, J.
+#[inline(always)]
+#[must_use]
+pub fn absorbed_between(h: &HoneycombParams, s0: Lane, s1: Lane) -> Lane {
+    let zero = splat(0.0);
+    let mut energy = (s1.min(h.peak_stroke_m) - s0).max(zero) * h.peak_force_n;
+    let mut start = h.peak_stroke_m;
+    for (end, force) in &h.stages {
+        let lo = s0.max(start);
+        let hi = s1.min(*end);
+        energy += (hi - lo).max(zero) * *force;
+        start = start.max(*end);
+    }
+    energy
+}
+
+/// The stroke increment that caps the axial load at the crush force, and the normal force
+/// after it (see the reference's `honeycomb::crush`). Lanes outside `mask` do not crush.
+#[inline(always)]
+#[must_use]
+pub fn crush(
+    h: &HoneycombParams,
+    mask: Lane,
+    stroke_m: Lane,
+    load_n: Lane,
+    normal_force_n: Lane,
+    strut_normal: Lane,
+    relief_n_per_m: Lane,
+) -> (Lane, Lane) {
+    let zero = splat(0.0);
+    let crush_n = crush_force(h, stroke_m);
+    let yields = mask
+        & load_n.simd_gt(crush_n)
+        & strut_normal.simd_ge(splat(MIN_STRUT_NORMAL))
+        & normal_force_n.simd_gt(zero);
+    let target_n = normal_force_n * crush_n / load_n;
+    let ds = ((normal_force_n - target_n) / (strut_normal * relief_n_per_m))
+        .min(h.usable_stroke_m - stroke_m)
+        .max(zero);
+    let ds = yields.select(ds, zero);
+    (ds, normal_force_n - strut_normal * relief_n_per_m * ds)
+}
