@@ -1,6 +1,8 @@
 //! The command line: raw flags (clap) apart from the work they start.
 
+use crate::output::sweep::{Format, SweepInfo, SweepWriter};
 use crate::output::trace::{self, TraceInfo};
+use crate::reference::Outcome;
 use crate::reference::{self, Model, Summary};
 use crate::sampling::{self, Sample};
 use crate::scenario::{DEFAULT_TOML, INPUT_FIELDS, Scenario};
@@ -23,6 +25,34 @@ pub enum Command {
     Scenario,
     /// Run one sample with the reference model and write its time history.
     Trace(TraceArgs),
+    /// Run a Monte Carlo sweep through the SIMD kernels and write one row per sample.
+    Sweep(SweepArgs),
+}
+
+/// Flags of `touchdown sweep`.
+#[derive(clap::Args, Debug)]
+pub struct SweepArgs {
+    /// Scenario file (TOML); without it, the default sweep of MODEL.md section 11.
+    #[arg(long, value_name = "FILE")]
+    pub scenario: Option<PathBuf>,
+    /// Number of samples (accepts 1e6, 250000, 2.5e5); default: the scenario's `samples`.
+    #[arg(long, value_name = "N", value_parser = parse_count)]
+    pub samples: Option<u64>,
+    /// Seed of the sweep (overrides the scenario's `seed`).
+    #[arg(long, value_name = "S", value_parser = parse_count)]
+    pub seed: Option<u64>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "T", value_parser = parse_threads)]
+    pub threads: Option<usize>,
+    /// Output file.
+    #[arg(long, value_name = "PATH", default_value = "sweep.arrow")]
+    pub out: PathBuf,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "arrow")]
+    pub format: Format,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Flags of `touchdown trace`.
@@ -59,6 +89,14 @@ pub fn parse_count(s: &str) -> Result<u64, String> {
     Ok(x as u64)
 }
 
+fn parse_threads(s: &str) -> Result<usize, String> {
+    match parse_count(s)? {
+        0 => Err("must be at least 1".to_string()),
+        n if n > 1024 => Err("must be at most 1024".to_string()),
+        n => Ok(n as usize),
+    }
+}
+
 fn parse_every(s: &str) -> Result<u64, String> {
     match parse_count(s)? {
         0 => Err("must be at least 1".to_string()),
@@ -74,6 +112,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             Ok(())
         }
         Command::Trace(args) => run_trace(&args),
+        Command::Sweep(args) => run_sweep(&args),
     }
 }
 
@@ -115,6 +154,83 @@ fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
         summary.steps
     ));
     print_out(&text);
+    Ok(())
+}
+
+/// Samples per task of the sweep's workers.
+const CHUNK: u64 = 1024;
+
+fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
+    use std::io::IsTerminal;
+    crate::output::check_output_path(&args.out)?;
+    let (scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+    let samples = args.samples.unwrap_or(scenario.samples);
+    if samples == 0 {
+        anyhow::bail!("--samples must be at least 1");
+    }
+    let threads = args
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, std::num::NonZero::get));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
+    let model = Model::new(&scenario);
+    eprintln!(
+        "touchdown sweep: {samples} samples, seed {}, kernel {} ({} landers per block), {threads} threads",
+        scenario.seed,
+        kernels::lane::LANE_NAME,
+        kernels::lane::LANES,
+    );
+    let info = SweepInfo {
+        scenario_toml: &text,
+        seed: scenario.seed,
+        samples,
+        lane_type: kernels::lane::LANE_NAME,
+    };
+    let mut writer = SweepWriter::create(&args.out, args.format, model.legs.len(), &info)?;
+    let bar = if args.quiet || !std::io::stderr().is_terminal() {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new(samples).with_style(
+            indicatif::ProgressStyle::with_template(
+                "{bar:40} {pos}/{len} samples  {per_sec}  ETA {eta}",
+            )
+            .expect("valid template"),
+        )
+    };
+    let mut counts = [0u64; Outcome::ALL.len()];
+    let mut steps = 0u64;
+    let start = std::time::Instant::now();
+    let stats = pool.install(|| {
+        crate::sweep::run(&scenario, &model, 0..samples, CHUNK, |rows| {
+            for r in &rows {
+                counts[r.summary.outcome as usize] += 1;
+                steps += r.summary.steps;
+            }
+            bar.inc(rows.len() as u64);
+            writer.push(rows)
+        })
+    })?;
+    let rows = writer.finish()?;
+    let wall = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let mut t = format!(
+        "samples                 {rows}\nwall time               {wall:.2} s\nsamples/s               {:.0}\nlander-steps/s          {:.3e} ({:.3e} per thread)\nmean steps per sample   {:.0}\nlane occupancy          {:.3}\noutcomes\n",
+        rows as f64 / wall,
+        steps as f64 / wall,
+        steps as f64 / wall / threads as f64,
+        steps as f64 / rows as f64,
+        stats.occupancy(),
+    );
+    for (o, c) in Outcome::ALL.iter().zip(counts) {
+        t.push_str(&format!(
+            "  {:<10} {c:>10}  {:>6.2} %\n",
+            o.name(),
+            100.0 * c as f64 / rows as f64
+        ));
+    }
+    t.push_str(&format!("wrote {}\n", args.out.display()));
+    print_out(&t);
     Ok(())
 }
 

@@ -1,6 +1,7 @@
 //! Arrow files: fields that carry their units, provenance in the schema metadata, and
 //! files that appear under their name only when complete.
 
+pub mod sweep;
 pub mod trace;
 
 use arrow_schema::{DataType, Field};
@@ -27,50 +28,49 @@ pub fn field(name: &str, data_type: DataType, unit: &str, description: &str) -> 
 pub struct AtomicFile {
     path: PathBuf,
     partial: PathBuf,
-    writer: Option<BufWriter<File>>,
+    committed: bool,
 }
 
 impl AtomicFile {
-    /// Creates the temporary file for `path`. Fails with a message naming the path when its
-    /// folder does not exist or cannot be written.
-    pub fn create(path: &Path) -> anyhow::Result<AtomicFile> {
+    /// Creates the temporary file for `path` and a buffered writer to it. Fails with a
+    /// message naming the path when its folder does not exist or cannot be written.
+    pub fn create(path: &Path) -> anyhow::Result<(AtomicFile, BufWriter<File>)> {
         check_output_path(path)?;
         let mut name = path.file_name().unwrap_or_default().to_os_string();
         name.push(".partial");
         let partial = path.with_file_name(name);
         let file = File::create(&partial)
             .map_err(|e| anyhow::anyhow!("cannot write output file {}: {e}", partial.display()))?;
-        Ok(AtomicFile {
+        let handle = AtomicFile {
             path: path.to_path_buf(),
             partial,
-            writer: Some(BufWriter::with_capacity(1 << 20, file)),
-        })
+            committed: false,
+        };
+        Ok((handle, BufWriter::with_capacity(1 << 20, file)))
     }
 
-    /// The writer to write the content to.
-    pub fn writer(&mut self) -> &mut BufWriter<File> {
-        self.writer.as_mut().expect("writer present until commit")
-    }
-
-    /// Flushes, syncs and renames the file onto its final path.
-    pub fn commit(mut self) -> anyhow::Result<()> {
-        let mut w = self.writer.take().expect("writer present until commit");
-        w.flush()?;
-        let file = w.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
+    /// Flushes and syncs `writer`, then renames the file onto its final path.
+    pub fn commit(mut self, mut writer: BufWriter<File>) -> anyhow::Result<()> {
+        let context = |e: std::io::Error| {
+            anyhow::anyhow!("cannot finish output file {}: {e}", self.partial.display())
+        };
+        writer.flush().map_err(context)?;
+        let file = writer.into_inner().map_err(|e| context(e.into_error()))?;
+        file.sync_all().map_err(context)?;
         std::fs::rename(&self.partial, &self.path).map_err(|e| {
             anyhow::anyhow!(
                 "cannot move the finished file onto {}: {e}",
                 self.path.display()
             )
         })?;
+        self.committed = true;
         Ok(())
     }
 }
 
 impl Drop for AtomicFile {
     fn drop(&mut self) {
-        if self.writer.is_some() {
+        if !self.committed {
             let _ = std::fs::remove_file(&self.partial);
         }
     }

@@ -169,8 +169,8 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     }
     let schema = Arc::new(Schema::new_with_metadata(fields, meta));
 
-    let mut file = AtomicFile::create(path)?;
-    let mut writer = FileWriter::try_new(file.writer(), &schema)?;
+    let (file, out) = AtomicFile::create(path)?;
+    let mut writer = FileWriter::try_new(out, &schema)?;
     let mut data: Vec<Vec<f64>> = vec![Vec::with_capacity(BATCH_ROWS); cols.len()];
     let mut buf = Vec::with_capacity(cols.len());
     let mut rows = 0u64;
@@ -209,7 +209,6 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
         flush(&mut data, &mut writer)?;
     }
     writer.finish()?;
-    drop(writer);
-    file.commit()?;
+    file.commit(writer.into_inner()?)?;
     Ok(rows)
 }

@@ -1,0 +1,313 @@
+//! The sweep file: one row per sample (MODEL.md section 9), inputs then results, in sample
+//! order, as Arrow IPC or Parquet, written in batches of a fixed row count so that the
+//! bytes depend on the scenario and seed alone (not on threads or timing).
+
+use super::{AtomicFile, ENGINE, field};
+use crate::scenario::INPUT_FIELDS;
+use crate::sweep::Row;
+use arrow_array::builder::{Float64Builder, StringBuilder, UInt32Builder, UInt64Builder};
+use arrow_array::{ArrayRef, RecordBatch};
+use arrow_ipc::writer::FileWriter;
+use arrow_schema::{DataType, Field, Schema, SchemaRef};
+use parquet::arrow::ArrowWriter;
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Rows per record batch (and Parquet row group).
+pub const BATCH_ROWS: usize = 65_536;
+
+/// File formats of a sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Arrow IPC file (Feather v2): `pandas.read_feather`, `polars.read_ipc`.
+    Arrow,
+    /// Parquet: `pandas.read_parquet`, `polars.read_parquet`.
+    Parquet,
+}
+
+/// Provenance stored in the schema metadata.
+pub struct SweepInfo<'a> {
+    pub scenario_toml: &'a str,
+    pub seed: u64,
+    pub samples: u64,
+    pub lane_type: &'a str,
+}
+
+/// The schema of a sweep of a lander with `legs` legs.
+#[must_use]
+pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
+    let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);
+    let mut fields: Vec<Field> = vec![
+        f("sample", DataType::UInt64, "1", "sample index"),
+        f(
+            "sample_seed",
+            DataType::UInt64,
+            "1",
+            "seed of the sample's generator",
+        ),
+    ];
+    for (name, unit) in INPUT_FIELDS {
+        fields.push(f(name, DataType::Float64, unit, "sampled input"));
+    }
+    fields.extend([
+        f(
+            "terrain_tile",
+            DataType::UInt32,
+            "1",
+            "terrain tile (0 on a flat surface)",
+        ),
+        f(
+            "terrain_offset_u_m",
+            DataType::Float64,
+            "m",
+            "landing point offset in the tile, downhill axis",
+        ),
+        f(
+            "terrain_offset_v_m",
+            DataType::Float64,
+            "m",
+            "landing point offset in the tile, cross-slope axis",
+        ),
+        f(
+            "outcome",
+            DataType::Utf8,
+            "1",
+            "stable, tipped, sliding, bouncing or diverged",
+        ),
+        f(
+            "decided_s",
+            DataType::Float64,
+            "s",
+            "time the outcome was decided (t_max for sliding and bouncing)",
+        ),
+        f("steps", DataType::UInt64, "1", "steps taken"),
+        f(
+            "final_tilt_deg",
+            DataType::Float64,
+            "deg",
+            "final tilt of Z_B from the slope normal",
+        ),
+        f(
+            "max_tilt_deg",
+            DataType::Float64,
+            "deg",
+            "largest tilt of Z_B from the slope normal",
+        ),
+        f(
+            "displacement_m",
+            DataType::Float64,
+            "m",
+            "distance the CG moved along the surface",
+        ),
+        f(
+            "peak_acceleration_m_s2",
+            DataType::Float64,
+            "m/s^2",
+            "peak contact acceleration of the CG (accelerometer reading)",
+        ),
+        f(
+            "peak_acceleration_z_body_m_s2",
+            DataType::Float64,
+            "m/s^2",
+            "peak contact acceleration along Z_B (instruments' shock)",
+        ),
+        f(
+            "bounces",
+            DataType::UInt32,
+            "1",
+            "lift-offs after the first contact",
+        ),
+        Field::new("first_contact_s", DataType::Float64, true).with_metadata(
+            [
+                ("unit", "s"),
+                (
+                    "description",
+                    "time of the first contact (null: never touched)",
+                ),
+            ]
+            .into_iter()
+            .collect::<arrow_schema::Metadata>(),
+        ),
+        f(
+            "max_penetration_m",
+            DataType::Float64,
+            "m",
+            "largest footpad penetration",
+        ),
+    ]);
+    for k in 0..legs {
+        fields.push(f(
+            &format!("leg{k}_peak_normal_force_n"),
+            DataType::Float64,
+            "N",
+            "peak normal force",
+        ));
+        fields.push(f(
+            &format!("leg{k}_stroke_m"),
+            DataType::Float64,
+            "m",
+            "final damper stroke",
+        ));
+        fields.push(f(
+            &format!("leg{k}_absorbed_j"),
+            DataType::Float64,
+            "J",
+            "energy absorbed by the damper",
+        ));
+    }
+    let meta = BTreeMap::from([
+        ("touchdown.engine".to_string(), ENGINE.to_string()),
+        ("touchdown.kind".to_string(), "sweep".to_string()),
+        (
+            "touchdown.scenario".to_string(),
+            info.scenario_toml.to_string(),
+        ),
+        ("touchdown.seed".to_string(), info.seed.to_string()),
+        ("touchdown.samples".to_string(), info.samples.to_string()),
+        (
+            "touchdown.lane_type".to_string(),
+            info.lane_type.to_string(),
+        ),
+    ]);
+    Arc::new(Schema::new_with_metadata(fields, meta))
+}
+
+/// A record batch of `rows` in `schema`.
+pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<RecordBatch> {
+    let n = rows.len();
+    let u64s = |get: &dyn Fn(&Row) -> u64| {
+        let mut b = UInt64Builder::with_capacity(n);
+        rows.iter().for_each(|r| b.append_value(get(r)));
+        Arc::new(b.finish()) as ArrayRef
+    };
+    let f64s = |get: &dyn Fn(&Row) -> f64| {
+        let mut b = Float64Builder::with_capacity(n);
+        rows.iter().for_each(|r| b.append_value(get(r)));
+        Arc::new(b.finish()) as ArrayRef
+    };
+    let u32s = |get: &dyn Fn(&Row) -> u32| {
+        let mut b = UInt32Builder::with_capacity(n);
+        rows.iter().for_each(|r| b.append_value(get(r)));
+        Arc::new(b.finish()) as ArrayRef
+    };
+    let mut cols: Vec<ArrayRef> = vec![u64s(&|r| r.sample.index), u64s(&|r| r.sample.seed)];
+    for k in 0..INPUT_FIELDS.len() {
+        cols.push(f64s(&|r| r.sample.inputs.to_array()[k]));
+    }
+    cols.push(u32s(&|r| r.sample.terrain_tile));
+    cols.push(f64s(&|r| r.sample.terrain_offset_m[0]));
+    cols.push(f64s(&|r| r.sample.terrain_offset_m[1]));
+    let mut outcome = StringBuilder::with_capacity(n, n * 8);
+    rows.iter()
+        .for_each(|r| outcome.append_value(r.summary.outcome.name()));
+    cols.push(Arc::new(outcome.finish()));
+    cols.push(f64s(&|r| r.summary.decided_s));
+    cols.push(u64s(&|r| r.summary.steps));
+    cols.push(f64s(&|r| r.summary.final_tilt_deg));
+    cols.push(f64s(&|r| r.summary.max_tilt_deg));
+    cols.push(f64s(&|r| r.summary.displacement_m));
+    cols.push(f64s(&|r| r.summary.peak_acceleration_m_s2));
+    cols.push(f64s(&|r| r.summary.peak_acceleration_z_body_m_s2));
+    cols.push(u32s(&|r| r.summary.bounces));
+    let mut first = Float64Builder::with_capacity(n);
+    rows.iter()
+        .for_each(|r| first.append_option(r.summary.first_contact_s));
+    cols.push(Arc::new(first.finish()));
+    cols.push(f64s(&|r| r.summary.max_penetration_m));
+    for k in 0..legs {
+        cols.push(f64s(&|r| r.summary.legs[k].peak_normal_force_n));
+        cols.push(f64s(&|r| r.summary.legs[k].stroke_m));
+        cols.push(f64s(&|r| r.summary.legs[k].absorbed_j));
+    }
+    Ok(RecordBatch::try_new(schema.clone(), cols)?)
+}
+
+enum Sink {
+    Arrow(FileWriter<BufWriter<File>>),
+    Parquet(ArrowWriter<BufWriter<File>>),
+}
+
+/// Writes rows as they come, in batches of `BATCH_ROWS`, to a file that appears under its
+/// name only after `finish`.
+pub struct SweepWriter {
+    file: AtomicFile,
+    sink: Sink,
+    schema: SchemaRef,
+    legs: usize,
+    pending: Vec<Row>,
+    rows: u64,
+}
+
+impl SweepWriter {
+    /// Opens the temporary file for `path`.
+    pub fn create(
+        path: &Path,
+        format: Format,
+        legs: usize,
+        info: &SweepInfo<'_>,
+    ) -> anyhow::Result<SweepWriter> {
+        let schema = schema(legs, info);
+        let (file, out) = AtomicFile::create(path)?;
+        let sink = match format {
+            Format::Arrow => Sink::Arrow(FileWriter::try_new(out, &schema)?),
+            Format::Parquet => {
+                let props = parquet::file::properties::WriterProperties::builder()
+                    .set_compression(parquet::basic::Compression::SNAPPY)
+                    .set_max_row_group_row_count(Some(BATCH_ROWS))
+                    .set_created_by(ENGINE.to_string())
+                    .build();
+                Sink::Parquet(ArrowWriter::try_new(out, schema.clone(), Some(props))?)
+            }
+        };
+        Ok(SweepWriter {
+            file,
+            sink,
+            schema,
+            legs,
+            pending: Vec::with_capacity(BATCH_ROWS),
+            rows: 0,
+        })
+    }
+
+    /// Takes rows in sample order; writes every full batch.
+    pub fn push(&mut self, rows: Vec<Row>) -> anyhow::Result<()> {
+        for row in rows {
+            self.pending.push(row);
+            if self.pending.len() == BATCH_ROWS {
+                self.flush()?;
+            }
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> anyhow::Result<()> {
+        if self.pending.is_empty() {
+            return Ok(());
+        }
+        let b = batch(&self.schema, self.legs, &self.pending)?;
+        match &mut self.sink {
+            Sink::Arrow(w) => w.write(&b)?,
+            Sink::Parquet(w) => w.write(&b)?,
+        }
+        self.rows += self.pending.len() as u64;
+        self.pending.clear();
+        Ok(())
+    }
+
+    /// Writes the last batch, closes the file and gives it its name. Returns the row count.
+    pub fn finish(mut self) -> anyhow::Result<u64> {
+        self.flush()?;
+        let out = match self.sink {
+            Sink::Arrow(mut w) => {
+                w.finish()?;
+                w.into_inner()?
+            }
+            Sink::Parquet(w) => w.into_inner()?,
+        };
+        self.file.commit(out)?;
+        Ok(self.rows)
+    }
+}
