@@ -36,13 +36,13 @@ pub struct SweepArgs {
     #[arg(long, value_name = "FILE")]
     pub scenario: Option<PathBuf>,
     /// Number of samples (accepts 1e6, 250000, 2.5e5); default: the scenario's `samples`.
-    #[arg(long, value_name = "N", value_parser = parse_count)]
+    #[arg(long, value_name = "N", value_parser = parse_count, allow_negative_numbers = true)]
     pub samples: Option<u64>,
     /// Seed of the sweep (overrides the scenario's `seed`).
-    #[arg(long, value_name = "S", value_parser = parse_count)]
+    #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_name = "T", value_parser = parse_threads)]
+    #[arg(long, value_name = "T", value_parser = parse_threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// Output file.
     #[arg(long, value_name = "PATH", default_value = "sweep.arrow")]
@@ -62,16 +62,16 @@ pub struct TraceArgs {
     #[arg(long, value_name = "FILE")]
     pub scenario: Option<PathBuf>,
     /// Seed of the sweep (overrides the scenario's `seed`).
-    #[arg(long, value_name = "S", value_parser = parse_count)]
+    #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
     /// Index of the sample to run (accepts 1e6, 250000, 2.5e5).
-    #[arg(long, value_name = "I", default_value = "0", value_parser = parse_count)]
+    #[arg(long, value_name = "I", default_value = "0", value_parser = parse_count, allow_negative_numbers = true)]
     pub sample: u64,
     /// Arrow IPC file to write the time history to.
     #[arg(long, value_name = "PATH", default_value = "trace.arrow")]
     pub out: PathBuf,
     /// Write one row every N steps.
-    #[arg(long, value_name = "N", default_value = "1", value_parser = parse_every)]
+    #[arg(long, value_name = "N", default_value = "1", value_parser = parse_every, allow_negative_numbers = true)]
     pub every: u64,
 }
 
@@ -87,6 +87,14 @@ pub fn parse_count(s: &str) -> Result<u64, String> {
         return Err(bad());
     }
     Ok(x as u64)
+}
+
+/// A seed: a whole number a scenario file can hold too (at most 2^63 - 1).
+fn parse_seed(s: &str) -> Result<u64, String> {
+    match parse_count(s)? {
+        n if n > i64::MAX as u64 => Err(format!("must be at most {}", i64::MAX)),
+        n => Ok(n),
+    }
 }
 
 fn parse_threads(s: &str) -> Result<usize, String> {

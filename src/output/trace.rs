@@ -15,7 +15,7 @@ use std::sync::Arc;
 /// Rows per record batch.
 const BATCH_ROWS: usize = 8192;
 
-/// Columns of the body, then 8 columns per leg.
+/// Columns of the body, then 7 columns per leg.
 fn columns(legs: usize) -> Vec<(String, &'static str, String)> {
     let mut c: Vec<(String, &'static str, String)> = [
         ("t_s", "s", "time at the start of the step"),

@@ -745,12 +745,6 @@ fn read_inputs(top: &mut Reader, d: &Inputs<Dist>) -> Result<Inputs<Dist>, Scena
     let Some(mut r) = top.table("inputs")? else {
         return Ok(*d);
     };
-    let tilt = Range {
-        min: -90.0,
-        max: 90.0,
-        max_open: true,
-        text: "values above -90 and below 90 deg",
-    };
     let ranges = [
         Range {
             min: 0.0,
@@ -768,8 +762,8 @@ fn read_inputs(top: &mut Reader, d: &Inputs<Dist>) -> Result<Inputs<Dist>, Scena
         ANY,
         ANY,
         ANY,
-        tilt,
-        tilt,
+        ANY,
+        ANY,
         ANY,
         ANY,
         ANY,

@@ -1,0 +1,773 @@
+//! End-to-end tests of the command line: the `touchdown` binary run as a user runs it.
+//!
+//! Every test works in a fresh folder of its own under the system temp folder, removed when
+//! the test passes and kept (its path printed) when it fails.
+
+use arrow_array::{Array, Float64Array};
+use arrow_ipc::reader::FileReader;
+use std::collections::HashMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+const BIN: &str = env!("CARGO_BIN_EXE_touchdown");
+
+/// A fresh, empty folder for one test.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(test: &str) -> TempDir {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let dir =
+            std::env::temp_dir().join(format!("touchdown-cli-{test}-{}-{n}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create the test's temp folder");
+        TempDir(dir)
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+
+    fn join(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+
+    fn write(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.join(name);
+        std::fs::write(&p, text).expect("write a test file");
+        p
+    }
+
+    /// Names of the entries in the folder, sorted.
+    fn entries(&self) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(&self.0)
+            .expect("list the temp folder")
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("kept the files of the failed test in {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+/// What a run of the binary gave.
+struct Run {
+    args: Vec<String>,
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+impl Run {
+    /// Panics, showing the whole run, unless it succeeded quietly.
+    fn assert_ok(&self) -> &Self {
+        assert!(
+            self.code == Some(0) && self.stderr.is_empty(),
+            "expected success of {self}"
+        );
+        self
+    }
+}
+
+impl std::fmt::Display for Run {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "`touchdown {}`: exit code {:?}\n--- stdout ---\n{}--- stderr ---\n{}--------------",
+            self.args.join(" "),
+            self.code,
+            self.stdout,
+            self.stderr
+        )
+    }
+}
+
+/// Runs `touchdown ARGS` in `dir`, without a backtrace setting from the caller's
+/// environment (so that a panic shows its usual `RUST_BACKTRACE` note).
+fn touchdown(dir: &Path, args: &[&str]) -> Run {
+    let out = Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .env_remove("RUST_BACKTRACE")
+        .env_remove("RUST_LIB_BACKTRACE")
+        .output()
+        .expect("run the touchdown binary");
+    Run {
+        args: args.iter().map(ToString::to_string).collect(),
+        code: out.status.code(),
+        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+/// The numbers of the `wrote PATH: R rows (every E of S steps)` line.
+#[derive(Debug, PartialEq)]
+struct Wrote {
+    path: String,
+    rows: u64,
+    every: u64,
+    steps: u64,
+}
+
+fn wrote(stdout: &str) -> Wrote {
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("wrote "))
+        .unwrap_or_else(|| panic!("no `wrote` line in\n{stdout}"));
+    let parse = || -> Option<Wrote> {
+        let (path, rest) = line.strip_prefix("wrote ")?.rsplit_once(": ")?;
+        let w: Vec<&str> = rest.split_whitespace().collect();
+        // ["R", "rows", "(every", "E", "of", "S", "steps)"]
+        if w.len() != 7 || w[1] != "rows" || w[2] != "(every" || w[6] != "steps)" {
+            return None;
+        }
+        Some(Wrote {
+            path: path.to_string(),
+            rows: w[0].parse().ok()?,
+            every: w[3].parse().ok()?,
+            steps: w[5].parse().ok()?,
+        })
+    };
+    parse().unwrap_or_else(|| panic!("cannot read the line {line:?}"))
+}
+
+/// The step count of the summary's `outcome ... (N steps)` line.
+fn summary_steps(stdout: &str) -> u64 {
+    let line = stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("outcome "))
+        .unwrap_or_else(|| panic!("no outcome line in\n{stdout}"));
+    line.rsplit_once('(')
+        .and_then(|(_, r)| r.strip_suffix(" steps)"))
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("cannot read the steps of {line:?}"))
+}
+
+/// The outcome word of the summary's `outcome` line.
+fn summary_outcome(stdout: &str) -> String {
+    stdout
+        .lines()
+        .find_map(|l| l.trim_start().strip_prefix("outcome "))
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap_or_else(|| panic!("no outcome line in\n{stdout}"))
+        .to_string()
+}
+
+/// The standard output without its `wrote` line, which names the output path.
+fn without_wrote_line(stdout: &str) -> String {
+    stdout
+        .lines()
+        .filter(|l| !l.starts_with("wrote "))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// An Arrow IPC file as the Rust reader sees it.
+struct Trace {
+    rows: usize,
+    columns: Vec<String>,
+    metadata: HashMap<String, String>,
+    t_s: Vec<f64>,
+}
+
+fn read_trace(path: &Path) -> Trace {
+    let file =
+        std::fs::File::open(path).unwrap_or_else(|e| panic!("cannot open {}: {e}", path.display()));
+    let reader = FileReader::try_new(file, None)
+        .unwrap_or_else(|e| panic!("{} is not an Arrow IPC file: {e}", path.display()));
+    let schema = reader.schema();
+    let columns = schema.fields().iter().map(|f| f.name().clone()).collect();
+    let metadata: HashMap<String, String> = schema.metadata().clone().into();
+    let mut rows = 0;
+    let mut t_s = Vec::new();
+    for batch in reader {
+        let batch = batch.expect("a readable record batch");
+        rows += batch.num_rows();
+        let t = batch
+            .column_by_name("t_s")
+            .expect("a t_s column")
+            .as_any()
+            .downcast_ref::<Float64Array>()
+            .expect("t_s is Float64");
+        assert_eq!(t.null_count(), 0);
+        t_s.extend(t.values().iter());
+    }
+    Trace {
+        rows,
+        columns,
+        metadata,
+        t_s,
+    }
+}
+
+fn read_bytes(path: &Path) -> Vec<u8> {
+    std::fs::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
+}
+
+// ---------------------------------------------------------------------------------------
+// 1. Bad input.
+
+/// One bad input: a scenario file (written as `scenario.toml` and passed with `--scenario`
+/// when given), further arguments of `touchdown trace`, and what stderr must contain.
+struct BadInput {
+    name: &'static str,
+    scenario: Option<&'static str>,
+    args: &'static [&'static str],
+    expect: &'static [&'static str],
+}
+
+const fn bad_scenario(
+    name: &'static str,
+    scenario: &'static str,
+    expect: &'static [&'static str],
+) -> BadInput {
+    BadInput {
+        name,
+        scenario: Some(scenario),
+        args: &[],
+        expect,
+    }
+}
+
+const fn bad_args(
+    name: &'static str,
+    args: &'static [&'static str],
+    expect: &'static [&'static str],
+) -> BadInput {
+    BadInput {
+        name,
+        scenario: None,
+        args,
+        expect,
+    }
+}
+
+const BAD_INPUTS: &[BadInput] = &[
+    // Unknown keys, with the hint of the closest known key.
+    bad_scenario(
+        "unknown top-level key",
+        "colour = \"red\"\n",
+        &["scenario key `colour` is unknown", "this table knows:"],
+    ),
+    bad_scenario(
+        "misspelt top-level key",
+        "sed = 3\n",
+        &["`sed` is unknown", "did you mean `seed`?"],
+    ),
+    bad_scenario(
+        "misspelt nested key",
+        "[lander]\nmas_kg = 5\n",
+        &["`lander.mas_kg` is unknown", "did you mean `mass_kg`?"],
+    ),
+    bad_scenario(
+        "misspelt key two tables down",
+        "[surface.roughness]\nrms_heigth_m = 0.01\n",
+        &[
+            "`surface.roughness.rms_heigth_m` is unknown",
+            "did you mean `rms_height_m`?",
+        ],
+    ),
+    bad_scenario(
+        "unknown key in a distribution",
+        "[inputs]\nslope_deg = { dist = \"uniform\", min = 0, max = 10, mode = 3 }\n",
+        &["`inputs.slope_deg.mode` is unknown"],
+    ),
+    // Wrong types.
+    bad_scenario(
+        "string for a number",
+        "[lander]\nmass_kg = \"heavy\"\n",
+        &["`lander.mass_kg` = \"heavy\"", "expected a number"],
+    ),
+    bad_scenario(
+        "number for a table",
+        "lander = 5\n",
+        &["`lander` = 5", "expected a table"],
+    ),
+    bad_scenario(
+        "float for an integer",
+        "seed = 1.5\n",
+        &["`seed` = 1.5", "whole number"],
+    ),
+    // Out of range.
+    bad_scenario(
+        "negative mass",
+        "[lander]\nmass_kg = -5\n",
+        &["`lander.mass_kg` = -5 ", "greater than 0"],
+    ),
+    bad_scenario(
+        "zero mass",
+        "[lander]\nmass_kg = 0\n",
+        &["`lander.mass_kg` = 0 ", "greater than 0"],
+    ),
+    bad_scenario(
+        "inertia against the triangle inequality",
+        "[lander]\ninertia_kg_m2 = [1, 1, 5]\n",
+        &["`lander.inertia_kg_m2` = [1, 1, 5]", "triangle inequality"],
+    ),
+    bad_scenario(
+        "slope of 90 deg",
+        "[inputs]\nslope_deg = 90\n",
+        &["`inputs.slope_deg` = 90 ", "not including, 90 deg"],
+    ),
+    bad_scenario(
+        "slope of 95 deg",
+        "[inputs]\nslope_deg = 95\n",
+        &["`inputs.slope_deg` = 95 ", "not including, 90 deg"],
+    ),
+    bad_scenario(
+        "uniform slope up to 90 deg",
+        "[inputs]\nslope_deg = { dist = \"uniform\", min = 0, max = 90 }\n",
+        &["`inputs.slope_deg`", "max = 90", "not including, 90 deg"],
+    ),
+    bad_scenario(
+        "uniform with min above max",
+        "[inputs]\nroll_deg = { dist = \"uniform\", min = 5, max = 1 }\n",
+        &["`inputs.roll_deg`", "min = 5", "min at most max"],
+    ),
+    bad_scenario(
+        "zero step",
+        "[simulation]\nstep_s = 0\n",
+        &["`simulation.step_s` = 0 ", "greater than 0"],
+    ),
+    bad_scenario(
+        "negative step",
+        "[simulation]\nstep_s = -0.001\n",
+        &["`simulation.step_s` = -0.001 ", "greater than 0"],
+    ),
+    bad_scenario(
+        "too few legs",
+        "[lander]\nlegs = 2\n",
+        &["`lander.legs` = 2 ", "from 3 to 64"],
+    ),
+    // Not finite.
+    bad_scenario(
+        "nan mass",
+        "[lander]\nmass_kg = nan\n",
+        &["`lander.mass_kg` = nan ", "finite"],
+    ),
+    bad_scenario(
+        "nan in a distribution",
+        "[inputs]\nroll_deg = { dist = \"normal\", mean = nan, sd = 1, min = -5, max = 5 }\n",
+        &["`inputs.roll_deg.mean` = nan ", "finite"],
+    ),
+    bad_scenario(
+        "inf mass",
+        "[lander]\nmass_kg = inf\n",
+        &["`lander.mass_kg` = inf ", "finite"],
+    ),
+    bad_scenario(
+        "inf in a distribution",
+        "[inputs]\nrelease_height_m = { dist = \"uniform\", min = 5, max = inf }\n",
+        &["`inputs.release_height_m.max` = inf ", "finite"],
+    ),
+    // Not TOML.
+    bad_scenario(
+        "unclosed table header",
+        "seed = 3\n[lander\nmass_kg = 5\n",
+        &["not valid TOML", "line 2", "[lander"],
+    ),
+    bad_scenario(
+        "doubled equals sign",
+        "[lander]\nmass_kg = = 5\n",
+        &["not valid TOML", "line 2", "mass_kg = = 5"],
+    ),
+    bad_scenario(
+        "duplicate key",
+        "seed = 1\nseed = 2\n",
+        &["not valid TOML", "line 2", "seed"],
+    ),
+    // Distributions.
+    bad_scenario(
+        "unknown distribution kind",
+        "[inputs]\nslope_deg = { dist = \"weibull\", min = 0, max = 10 }\n",
+        &["`inputs.slope_deg.dist` = \"weibull\"", "\"uniform\""],
+    ),
+    bad_scenario(
+        "distribution without its kind",
+        "[inputs]\nslope_deg = { min = 0, max = 10 }\n",
+        &[
+            "`inputs.slope_deg` = { max = 10, min = 0 }",
+            "dist = \"uniform\"",
+        ],
+    ),
+    bad_scenario(
+        "distribution missing a bound",
+        "[inputs]\nslope_deg = { dist = \"uniform\", min = 0 }\n",
+        &["`inputs.slope_deg`", "`max` in a \"uniform\" distribution"],
+    ),
+    bad_scenario(
+        "untruncated normal on slope_deg",
+        "[inputs]\nslope_deg = { dist = \"normal\", mean = 10, sd = 2 }\n",
+        &[
+            "`inputs.slope_deg`",
+            "dist = \"normal\"",
+            "untruncated normal",
+            "give min and max",
+        ],
+    ),
+    bad_scenario(
+        "normal on slope_deg truncated on one side only",
+        "[inputs]\nslope_deg = { dist = \"normal\", mean = 10, sd = 2, min = 0 }\n",
+        &["`inputs.slope_deg`", "min = 0", "give min and max"],
+    ),
+    // Files and flags.
+    bad_args(
+        "missing scenario file",
+        &["--scenario", "missing.toml"],
+        &["cannot read scenario file missing.toml"],
+    ),
+    bad_args(
+        "sample not a number",
+        &["--sample", "abc"],
+        &["--sample", "'abc'", "not a whole number"],
+    ),
+    bad_args("negative sample", &["--sample", "-1"], &["--sample", "-1"]),
+    bad_args("negative seed", &["--seed", "-1"], &["--seed", "-1"]),
+    bad_args(
+        "negative sample, with =",
+        &["--sample=-1"],
+        &["--sample", "'-1'", "not a whole number"],
+    ),
+    bad_args(
+        "fractional sample",
+        &["--sample", "1.5"],
+        &["--sample", "'1.5'", "not a whole number"],
+    ),
+    bad_args(
+        "seed not a number",
+        &["--seed", "x7"],
+        &["--seed", "'x7'", "not a whole number"],
+    ),
+    bad_args(
+        "zero every",
+        &["--every", "0"],
+        &["--every", "'0'", "at least 1"],
+    ),
+    bad_args(
+        "output in a missing folder",
+        &["--out", "missing/out.arrow"],
+        &["missing/out.arrow", "folder missing does not exist"],
+    ),
+    bad_args(
+        "output path that names no file",
+        &["--out", "."],
+        &["output path \".\"", "names no file"],
+    ),
+    // A bad scenario is refused before the output file is made, wherever it goes.
+    BadInput {
+        name: "bad scenario with an explicit output path",
+        scenario: Some("[lander]\nmass_kg = 0\n"),
+        args: &["--out", "explicit.arrow"],
+        expect: &["`lander.mass_kg` = 0 "],
+    },
+];
+
+/// What is wrong with the run of one bad input (empty when it was refused properly).
+fn check_bad_input(case: &BadInput) -> Vec<String> {
+    let dir = TempDir::new("bad-input");
+    let mut args = vec!["trace"];
+    if let Some(text) = case.scenario {
+        dir.write("scenario.toml", text);
+        args.extend(["--scenario", "scenario.toml"]);
+    }
+    args.extend(case.args);
+    let before = dir.entries();
+    let run = touchdown(dir.path(), &args);
+
+    let mut problems = Vec::new();
+    if run.code != Some(2) {
+        problems.push(format!("exit code {:?}, expected 2", run.code));
+    }
+    if !run.stderr.contains("error:") {
+        problems.push("stderr does not say `error:`".to_string());
+    }
+    for s in case.expect {
+        if !run.stderr.contains(s) {
+            problems.push(format!("stderr lacks {s:?}"));
+        }
+    }
+    for s in ["panicked", "RUST_BACKTRACE", "stack backtrace"] {
+        if run.stderr.contains(s) {
+            problems.push(format!("stderr has panic text {s:?}"));
+        }
+    }
+    if !run.stdout.is_empty() {
+        problems.push("something was printed on stdout".to_string());
+    }
+    let after = dir.entries();
+    if after != before {
+        problems.push(format!("files before: {before:?}, after: {after:?}"));
+    }
+    if problems.is_empty() {
+        Vec::new()
+    } else {
+        vec![format!(
+            "{}:\n    {}\n{run}",
+            case.name,
+            problems.join("\n    ")
+        )]
+    }
+}
+
+#[test]
+fn bad_input_is_refused_with_a_message_naming_key_and_value() {
+    let failures: Vec<String> = BAD_INPUTS.iter().flat_map(check_bad_input).collect();
+    assert!(
+        failures.is_empty(),
+        "{} of {} bad inputs were not refused properly:\n\n{}",
+        failures.len(),
+        BAD_INPUTS.len(),
+        failures.join("\n\n")
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// 2. The printed default scenario.
+
+#[test]
+fn printed_scenario_reads_back_as_the_default() {
+    let dir = TempDir::new("scenario-round-trip");
+    let printed = touchdown(dir.path(), &["scenario"]);
+    printed.assert_ok();
+    assert_eq!(printed.stdout, touchdown::scenario::DEFAULT_TOML);
+    dir.write("default.toml", &printed.stdout);
+
+    let from_file = touchdown(
+        dir.path(),
+        &["trace", "--scenario", "default.toml", "--out", "a.arrow"],
+    );
+    from_file.assert_ok();
+    let built_in = touchdown(dir.path(), &["trace", "--out", "b.arrow"]);
+    built_in.assert_ok();
+
+    assert_eq!(wrote(&from_file.stdout).path, "a.arrow");
+    assert_eq!(wrote(&built_in.stdout).path, "b.arrow");
+    assert_eq!(
+        without_wrote_line(&from_file.stdout),
+        without_wrote_line(&built_in.stdout),
+        "the printed scenario does not run like the built-in default"
+    );
+    // The same scenario text is stored as provenance, so the files are the same too.
+    assert!(
+        read_bytes(&dir.join("a.arrow")) == read_bytes(&dir.join("b.arrow")),
+        "trace files of the printed and the built-in default differ"
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// 3. A trace file.
+
+#[test]
+fn trace_rows_match_the_summary_and_runs_repeat_exactly() {
+    let dir = TempDir::new("trace");
+    let args = |out: &'static str, sample: &'static str| {
+        [
+            "trace", "--sample", sample, "--seed", "7", "--every", "10", "--out", out,
+        ]
+    };
+    let first = touchdown(dir.path(), &args("a.arrow", "3"));
+    first.assert_ok();
+    assert!(
+        first.stdout.starts_with("sample 3 of seed 7 "),
+        "{}",
+        first.stdout
+    );
+
+    let steps = summary_steps(&first.stdout);
+    let w = wrote(&first.stdout);
+    assert_eq!(
+        w,
+        Wrote {
+            path: "a.arrow".into(),
+            rows: steps.div_ceil(10),
+            every: 10,
+            steps,
+        },
+        "{}",
+        first.stdout
+    );
+    assert!(
+        steps > 10,
+        "too short a sample to test --every: {steps} steps"
+    );
+
+    let trace = read_trace(&dir.join("a.arrow"));
+    assert_eq!(trace.rows as u64, w.rows);
+    assert!(
+        trace.t_s.windows(2).all(|p| p[0] < p[1]),
+        "t_s does not increase"
+    );
+    let meta = |k: &str| trace.metadata.get(k).map(String::as_str);
+    assert_eq!(meta("touchdown.seed"), Some("7"));
+    assert_eq!(meta("touchdown.sample"), Some("3"));
+    assert_eq!(meta("touchdown.every"), Some("10"));
+    assert_eq!(meta("touchdown.kind"), Some("trace"));
+    assert_eq!(
+        meta("touchdown.outcome"),
+        Some(summary_outcome(&first.stdout).as_str())
+    );
+    assert_eq!(
+        meta("touchdown.scenario"),
+        Some(touchdown::scenario::DEFAULT_TOML)
+    );
+    for leg in 0..4 {
+        assert!(
+            trace.columns.contains(&format!("leg{leg}_normal_force_n")),
+            "no columns of leg {leg} in {:?}",
+            trace.columns
+        );
+    }
+
+    // Twice the same command: the same file, byte for byte.
+    let second = touchdown(dir.path(), &args("b.arrow", "3"));
+    second.assert_ok();
+    assert_eq!(
+        without_wrote_line(&first.stdout),
+        without_wrote_line(&second.stdout)
+    );
+    assert!(
+        read_bytes(&dir.join("a.arrow")) == read_bytes(&dir.join("b.arrow")),
+        "two runs of the same command wrote different files"
+    );
+
+    // Overwriting an existing file leaves no partial file behind.
+    touchdown(dir.path(), &args("a.arrow", "3")).assert_ok();
+    assert_eq!(dir.entries(), ["a.arrow", "b.arrow"]);
+
+    // A sample index in scientific notation is the same sample.
+    let ten = touchdown(dir.path(), &args("ten.arrow", "10"));
+    ten.assert_ok();
+    let sci = touchdown(dir.path(), &args("sci.arrow", "1e1"));
+    sci.assert_ok();
+    assert!(
+        ten.stdout.starts_with("sample 10 of seed 7 "),
+        "{}",
+        ten.stdout
+    );
+    assert_eq!(
+        without_wrote_line(&ten.stdout),
+        without_wrote_line(&sci.stdout)
+    );
+    assert!(
+        read_bytes(&dir.join("ten.arrow")) == read_bytes(&dir.join("sci.arrow")),
+        "--sample 1e1 and --sample 10 wrote different files"
+    );
+    assert!(
+        read_bytes(&dir.join("ten.arrow")) != read_bytes(&dir.join("a.arrow")),
+        "samples 10 and 3 wrote the same file"
+    );
+}
+
+#[test]
+fn every_step_is_a_row_by_default() {
+    let dir = TempDir::new("trace-every-1");
+    let run = touchdown(dir.path(), &["trace"]);
+    run.assert_ok();
+    let w = wrote(&run.stdout);
+    assert_eq!(w.path, "trace.arrow");
+    assert_eq!((w.every, w.steps), (1, summary_steps(&run.stdout)));
+    assert_eq!(w.rows, w.steps);
+    assert_eq!(read_trace(&dir.join("trace.arrow")).rows as u64, w.rows);
+}
+
+// ---------------------------------------------------------------------------------------
+// 4. Python readers.
+
+const PYTHON_MODULES: &str = "pandas, polars, pyarrow";
+
+/// The Python interpreter: `TOUCHDOWN_PYTHON`, or `python3`.
+fn python() -> String {
+    std::env::var("TOUCHDOWN_PYTHON").unwrap_or_else(|_| "python3".to_string())
+}
+
+/// Why the Python readers cannot run, or `None` when they can.
+fn python_unavailable() -> Option<String> {
+    match Command::new(python())
+        .args(["-c", &format!("import {PYTHON_MODULES}")])
+        .output()
+    {
+        Err(e) => Some(format!("cannot run {}: {e}", python())),
+        Ok(o) if !o.status.success() => Some(format!(
+            "{} cannot import {PYTHON_MODULES}: {}",
+            python(),
+            String::from_utf8_lossy(&o.stderr).trim()
+        )),
+        Ok(_) => None,
+    }
+}
+
+/// Runs `check_trace.py` on a file the binary writes with `args`.
+fn check_with_python(dir: &TempDir, args: &[&str], out: &str, legs: usize) {
+    let mut all = vec!["trace", "--out", out];
+    all.extend(args);
+    let run = touchdown(dir.path(), &all);
+    run.assert_ok();
+    let w = wrote(&run.stdout);
+    assert_eq!(w.rows, w.steps.div_ceil(w.every));
+
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_trace.py");
+    let o = Command::new(python())
+        .arg(&script)
+        .arg(dir.join(out))
+        .arg(w.rows.to_string())
+        .arg(legs.to_string())
+        .output()
+        .expect("run check_trace.py");
+    assert!(
+        o.status.success(),
+        "{} found problems in the trace of `touchdown {}` ({:?}):\n{}{}",
+        script.display(),
+        all.join(" "),
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn python_readers_open_the_trace() {
+    if let Some(why) = python_unavailable() {
+        if std::env::var("TOUCHDOWN_SKIP_PYTHON").as_deref() == Ok("1") {
+            // Straight to the terminal: the test harness hides what `eprintln!` prints in a
+            // test that passes.
+            let _ = writeln!(
+                std::io::stderr(),
+                "\nSKIPPED python_readers_open_the_trace (TOUCHDOWN_SKIP_PYTHON=1): {why}"
+            );
+            return;
+        }
+        panic!(
+            "{why}\n\nThe Python readers are part of the tests: \
+             `pip install -r tests/python/requirements.txt`, \
+             or set TOUCHDOWN_SKIP_PYTHON=1 to skip this test."
+        );
+    }
+    let dir = TempDir::new("python");
+    check_with_python(&dir, &[], "four-legs.arrow", 4);
+    dir.write("three-legs.toml", "[lander]\nlegs = 3\n");
+    check_with_python(
+        &dir,
+        &[
+            "--scenario",
+            "three-legs.toml",
+            "--sample",
+            "2",
+            "--every",
+            "7",
+        ],
+        "three-legs.arrow",
+        3,
+    );
+}
