@@ -27,14 +27,23 @@ pub fn integrate(
     *velocity_m_s = kicked;
     velocity_m_s.z = velocity_m_s.z - gravity_m_s2 * dt;
 
+    // Euler's equations by the implicit midpoint rule, as the reference.
     let i = inertia_kg_m2;
-    let w = rate_rad_s;
-    w.x += dt * (moment_n_m.x + (i.y - i.z) * w.y * w.z) / i.x;
-    w.y += dt * (moment_n_m.y + (i.z - i.x) * w.z * w.x) / i.y;
-    w.z += dt * (moment_n_m.z + (i.x - i.y) * w.x * w.y) / i.z;
+    let w0 = *rate_rad_s;
+    let half_dt = splat(0.5) * dt;
+    let mut mid = w0;
+    for _ in 0..MIDPOINT_PASSES {
+        let gyro = mid.cross(Vec3::new(i.x * mid.x, i.y * mid.y, i.z * mid.z));
+        let torque = moment_n_m - gyro;
+        mid = w0 + Vec3::new(torque.x / i.x, torque.y / i.y, torque.z / i.z) * half_dt;
+    }
+    *rate_rad_s = mid * splat(2.0) - w0;
 
-    *attitude = attitude.mul(rotation_increment(*w, dt)).normalize();
+    *attitude = attitude.mul(rotation_increment(mid, dt)).normalize();
 }
+
+/// Fixed-point passes of the implicit midpoint rule for the body rates.
+pub const MIDPOINT_PASSES: usize = 3;
 
 /// `exp(w dt / 2)` as a quaternion, by the same Taylor series as the reference.
 #[inline(always)]
