@@ -7,8 +7,8 @@ use crate::params::HoneycombParams;
 /// Strut directions closer than this to the surface plane cannot relieve the load.
 pub const MIN_STRUT_NORMAL: f64 = 0.05;
 
-/// The crush force at stroke `s`: the initial peak, then the stage plateaus; infinite
-/// beyond the usable stroke.
+/// The crush force at stroke `s`: over the initial peak falling linearly from the peak to
+/// the first plateau, then the stage plateaus; infinite beyond the usable stroke.
 #[inline(always)]
 #[must_use]
 pub fn crush_force(h: &HoneycombParams, stroke_m: Lane) -> Lane {
@@ -16,9 +16,9 @@ pub fn crush_force(h: &HoneycombParams, stroke_m: Lane) -> Lane {
     for (end, f) in h.stages.iter().rev() {
         force = stroke_m.simd_lt(*end).select(*f, force);
     }
-    stroke_m
-        .simd_lt(h.peak_stroke_m)
-        .select(h.peak_force_n, force)
+    let plateau = h.stages[0].1;
+    let peak = plateau + (h.peak_force_n - plateau) * (splat(1.0) - stroke_m / h.peak_stroke_m);
+    stroke_m.simd_lt(h.peak_stroke_m).select(peak, force)
 }
 
 /// The energy absorbed from stroke `s0` to `s1`: the integral of the crush force, J.
@@ -26,7 +26,10 @@ pub fn crush_force(h: &HoneycombParams, stroke_m: Lane) -> Lane {
 #[must_use]
 pub fn absorbed_between(h: &HoneycombParams, s0: Lane, s1: Lane) -> Lane {
     let zero = splat(0.0);
-    let mut energy = (s1.min(h.peak_stroke_m) - s0).max(zero) * h.peak_force_n;
+    let lo = s0.min(h.peak_stroke_m);
+    let hi = s1.min(h.peak_stroke_m);
+    let on_peak = hi.simd_gt(lo);
+    let mut energy = on_peak.select((hi - lo) * crush_force(h, splat(0.5) * (lo + hi)), zero);
     let mut start = h.peak_stroke_m;
     for (end, force) in &h.stages {
         let lo = s0.max(start);
@@ -35,6 +38,17 @@ pub fn absorbed_between(h: &HoneycombParams, s0: Lane, s1: Lane) -> Lane {
         start = start.max(*end);
     }
     energy
+}
+
+/// The end of the piece of the force curve that holds stroke `s` (see the reference).
+#[inline(always)]
+#[must_use]
+pub fn piece_end(h: &HoneycombParams, stroke_m: Lane) -> Lane {
+    let mut end = h.usable_stroke_m;
+    for (stage_end, _) in h.stages.iter().rev() {
+        end = stroke_m.simd_lt(*stage_end).select(*stage_end, end);
+    }
+    stroke_m.simd_lt(h.peak_stroke_m).select(h.peak_stroke_m, end)
 }
 
 /// The stroke increment that caps the axial load at the crush force, and the normal force
@@ -58,7 +72,7 @@ pub fn crush(
         & normal_force_n.simd_gt(zero);
     let target_n = normal_force_n * crush_n / load_n;
     let ds = ((normal_force_n - target_n) / (strut_normal * relief_n_per_m))
-        .min(h.usable_stroke_m - stroke_m)
+        .min(piece_end(h, stroke_m) - stroke_m)
         .max(zero);
     let ds = yields.select(ds, zero);
     (ds, normal_force_n - strut_normal * relief_n_per_m * ds)

@@ -13,13 +13,15 @@ use super::model::Honeycomb;
 /// load by crushing; the cartridge then holds.
 pub const MIN_STRUT_NORMAL: f64 = 0.05;
 
-/// The crush force at stroke `s`: the initial peak, then the stage plateaus, N.
-/// Beyond the usable stroke the cartridge is rigid (infinite force).
+/// The crush force at stroke `s`, N: over the initial peak it falls linearly from the peak
+/// to the first plateau (a cartridge that is not pre-crushed), then the stage plateaus;
+/// beyond the usable stroke the cartridge is rigid (infinite force).
 #[inline]
 #[must_use]
 pub fn crush_force(h: &Honeycomb, stroke_m: f64) -> f64 {
     if stroke_m < h.peak_stroke_m {
-        return h.peak_force_n;
+        let plateau = h.stages[0].1;
+        return plateau + (h.peak_force_n - plateau) * (1.0 - stroke_m / h.peak_stroke_m);
     }
     h.stages
         .iter()
@@ -28,30 +30,51 @@ pub fn crush_force(h: &Honeycomb, stroke_m: f64) -> f64 {
 }
 
 /// The energy absorbed by crushing from stroke `s0` to `s1` (`s0 <= s1 <= usable`): the
-/// integral of the piecewise-constant crush force, J.
+/// integral of the crush force, J (exact: the force is linear over the peak, constant over
+/// each stage).
 #[must_use]
 pub fn absorbed_between(h: &Honeycomb, s0: f64, s1: f64) -> f64 {
     let mut energy = 0.0;
-    let mut start = 0.0;
-    let pieces = std::iter::once((h.peak_stroke_m, h.peak_force_n)).chain(h.stages.iter().copied());
-    for (end, force) in pieces {
+    let lo = s0.min(h.peak_stroke_m);
+    let hi = s1.min(h.peak_stroke_m);
+    if hi > lo {
+        energy += (hi - lo) * crush_force(h, 0.5 * (lo + hi));
+    }
+    let mut start = h.peak_stroke_m;
+    for (end, force) in &h.stages {
         let lo = s0.max(start);
-        let hi = s1.min(end);
+        let hi = s1.min(*end);
         if hi > lo {
             energy += force * (hi - lo);
         }
-        start = start.max(end);
+        start = start.max(*end);
     }
     energy
+}
+
+/// The end of the piece of the force curve that holds stroke `s`: the initial peak, a
+/// stage, or the usable stroke. A step's crushing stops there, so that a stronger stage
+/// holds from the step after.
+#[inline]
+#[must_use]
+pub fn piece_end(h: &Honeycomb, stroke_m: f64) -> f64 {
+    if stroke_m < h.peak_stroke_m {
+        return h.peak_stroke_m;
+    }
+    h.stages
+        .iter()
+        .find(|(end, _)| stroke_m < *end)
+        .map_or(h.usable_stroke_m(), |(end, _)| *end)
 }
 
 /// The stroke increment that caps the axial load `load_n` at the crush force.
 ///
 /// `normal_force_n` is the trial normal force, `strut_normal` the cosine `a` between the
-/// local normal and the strut direction (footpad to hip), `compliance_n_per_m` the
-/// relief `k + c/dt` of the contact per metre of footpad lift. Friction is taken to scale
-/// with the normal force, so the load falls in proportion to it. Returns the increment
-/// and the normal force after it.
+/// local normal and the strut direction (footpad to hip), `relief_n_per_m` the relief
+/// `k + c/dt` of the contact per metre of footpad lift. Friction is taken to scale with the
+/// normal force, so the load falls in proportion to it. The increment stops at the end of
+/// the piece of the force curve it starts in, so a stronger stage holds from the next
+/// step. Returns the increment and the normal force after it.
 #[inline]
 #[must_use]
 pub fn crush(
@@ -68,7 +91,7 @@ pub fn crush(
     }
     let target_n = normal_force_n * crush_n / load_n;
     let ds = ((normal_force_n - target_n) / (strut_normal * relief_n_per_m))
-        .min(h.usable_stroke_m() - stroke_m)
+        .min(piece_end(h, stroke_m) - stroke_m)
         .max(0.0);
     (ds, normal_force_n - strut_normal * relief_n_per_m * ds)
 }
@@ -88,7 +111,8 @@ mod tests {
     #[test]
     fn force_follows_the_stages() {
         let h = two_stage(true);
-        assert_eq!(crush_force(&h, 0.001), 175.0);
+        assert_eq!(crush_force(&h, 0.0), 175.0);
+        assert!((crush_force(&h, 0.001) - 137.5).abs() < 1e-12);
         assert_eq!(crush_force(&h, 0.01), 100.0);
         assert_eq!(crush_force(&h, 0.03), 300.0);
         assert_eq!(crush_force(&h, 0.05), f64::INFINITY);
@@ -98,23 +122,33 @@ mod tests {
     #[test]
     fn absorbed_energy_integrates_the_force() {
         let h = two_stage(true);
-        // 2 mm at 175 N, 18 mm at 100 N, 30 mm at 300 N.
-        let whole = 0.002 * 175.0 + 0.018 * 100.0 + 0.03 * 300.0;
+        // 2 mm falling from 175 N to 100 N, 18 mm at 100 N, 30 mm at 300 N.
+        let whole = 0.002 * 137.5 + 0.018 * 100.0 + 0.03 * 300.0;
         assert!((absorbed_between(&h, 0.0, 0.05) - whole).abs() < 1e-12);
-        let parts = absorbed_between(&h, 0.0, 0.011) + absorbed_between(&h, 0.011, 0.05);
+        let parts = absorbed_between(&h, 0.0, 0.0011) + absorbed_between(&h, 0.0011, 0.05);
         assert!((parts - whole).abs() < 1e-12);
-        assert!(
-            (absorbed_between(&h, 0.019, 0.021) - (0.001 * 100.0 + 0.001 * 300.0)).abs() < 1e-12
-        );
+        assert!((absorbed_between(&h, 0.019, 0.021) - (0.001 * 100.0 + 0.001 * 300.0)).abs() < 1e-12);
     }
 
     #[test]
-    fn crush_caps_the_load_and_stops_at_the_usable_stroke() {
+    fn pieces_end_at_the_peak_and_the_stages() {
+        let h = two_stage(true);
+        assert_eq!(piece_end(&h, 0.0), 0.002);
+        assert_eq!(piece_end(&h, 0.002), 0.02);
+        assert_eq!(piece_end(&h, 0.03), 0.05);
+        assert_eq!(piece_end(&h, 0.05), 0.05);
+    }
+
+    #[test]
+    fn crush_caps_the_load_and_stops_at_the_piece_end() {
         let h = two_stage(false);
         // Load 400 N against 100 N: the normal force falls to a quarter.
         let (ds, f) = crush(&h, 0.01, 400.0, 400.0, 1.0, 5.0e4);
         assert!((f - 100.0).abs() < 1e-9);
         assert!((ds - 300.0 / 5.0e4).abs() < 1e-12);
+        // Near the end of the first stage the increment stops at the stage end.
+        let (ds, f) = crush(&h, 0.0199, 400.0, 400.0, 1.0, 5.0e4);
+        assert!((ds - 0.0001).abs() < 1e-12 && f > 100.0);
         let (ds, f) = crush(&h, 0.049, 4.0e4, 4.0e4, 1.0, 5.0e4);
         assert!((ds - 0.001).abs() < 1e-12 && f > 300.0);
         assert_eq!(crush(&h, 0.01, 90.0, 90.0, 1.0, 5.0e4), (0.0, 90.0));
