@@ -3,114 +3,14 @@
 //! Every test works in a fresh folder of its own under the system temp folder, removed when
 //! the test passes and kept (its path printed) when it fails.
 
+use crate::common::{
+    BadInput, TempDir, bad_args, bad_scenario, check_bad_input, python_readers_available,
+    read_bytes, run_python_check, touchdown,
+};
 use arrow_array::{Array, Float64Array};
 use arrow_ipc::reader::FileReader;
 use std::collections::HashMap;
-use std::io::Write;
-use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-const BIN: &str = env!("CARGO_BIN_EXE_touchdown");
-
-/// A fresh, empty folder for one test.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(test: &str) -> TempDir {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let dir =
-            std::env::temp_dir().join(format!("touchdown-cli-{test}-{}-{n}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create the test's temp folder");
-        TempDir(dir)
-    }
-
-    fn path(&self) -> &Path {
-        &self.0
-    }
-
-    fn join(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-
-    fn write(&self, name: &str, text: &str) -> PathBuf {
-        let p = self.join(name);
-        std::fs::write(&p, text).expect("write a test file");
-        p
-    }
-
-    /// Names of the entries in the folder, sorted.
-    fn entries(&self) -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(&self.0)
-            .expect("list the temp folder")
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        if std::thread::panicking() {
-            eprintln!("kept the files of the failed test in {}", self.0.display());
-        } else {
-            let _ = std::fs::remove_dir_all(&self.0);
-        }
-    }
-}
-
-/// What a run of the binary gave.
-struct Run {
-    args: Vec<String>,
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl Run {
-    /// Panics, showing the whole run, unless it succeeded quietly.
-    fn assert_ok(&self) -> &Self {
-        assert!(
-            self.code == Some(0) && self.stderr.is_empty(),
-            "expected success of {self}"
-        );
-        self
-    }
-}
-
-impl std::fmt::Display for Run {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "`touchdown {}`: exit code {:?}\n--- stdout ---\n{}--- stderr ---\n{}--------------",
-            self.args.join(" "),
-            self.code,
-            self.stdout,
-            self.stderr
-        )
-    }
-}
-
-/// Runs `touchdown ARGS` in `dir`, without a backtrace setting from the caller's
-/// environment (so that a panic shows its usual `RUST_BACKTRACE` note).
-fn touchdown(dir: &Path, args: &[&str]) -> Run {
-    let out = Command::new(BIN)
-        .args(args)
-        .current_dir(dir)
-        .env_remove("RUST_BACKTRACE")
-        .env_remove("RUST_LIB_BACKTRACE")
-        .output()
-        .expect("run the touchdown binary");
-    Run {
-        args: args.iter().map(ToString::to_string).collect(),
-        code: out.status.code(),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
+use std::path::Path;
 
 /// The numbers of the `wrote PATH: R rows (every E of S steps)` line.
 #[derive(Debug, PartialEq)]
@@ -212,47 +112,8 @@ fn read_trace(path: &Path) -> Trace {
     }
 }
 
-fn read_bytes(path: &Path) -> Vec<u8> {
-    std::fs::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
-}
-
 // ---------------------------------------------------------------------------------------
 // 1. Bad input.
-
-/// One bad input: a scenario file (written as `scenario.toml` and passed with `--scenario`
-/// when given), further arguments of `touchdown trace`, and what stderr must contain.
-struct BadInput {
-    name: &'static str,
-    scenario: Option<&'static str>,
-    args: &'static [&'static str],
-    expect: &'static [&'static str],
-}
-
-const fn bad_scenario(
-    name: &'static str,
-    scenario: &'static str,
-    expect: &'static [&'static str],
-) -> BadInput {
-    BadInput {
-        name,
-        scenario: Some(scenario),
-        args: &[],
-        expect,
-    }
-}
-
-const fn bad_args(
-    name: &'static str,
-    args: &'static [&'static str],
-    expect: &'static [&'static str],
-) -> BadInput {
-    BadInput {
-        name,
-        scenario: None,
-        args,
-        expect,
-    }
-}
 
 const BAD_INPUTS: &[BadInput] = &[
     // Unknown keys, with the hint of the closest known key.
@@ -474,56 +335,12 @@ const BAD_INPUTS: &[BadInput] = &[
     },
 ];
 
-/// What is wrong with the run of one bad input (empty when it was refused properly).
-fn check_bad_input(case: &BadInput) -> Vec<String> {
-    let dir = TempDir::new("bad-input");
-    let mut args = vec!["trace"];
-    if let Some(text) = case.scenario {
-        dir.write("scenario.toml", text);
-        args.extend(["--scenario", "scenario.toml"]);
-    }
-    args.extend(case.args);
-    let before = dir.entries();
-    let run = touchdown(dir.path(), &args);
-
-    let mut problems = Vec::new();
-    if run.code != Some(2) {
-        problems.push(format!("exit code {:?}, expected 2", run.code));
-    }
-    if !run.stderr.contains("error:") {
-        problems.push("stderr does not say `error:`".to_string());
-    }
-    for s in case.expect {
-        if !run.stderr.contains(s) {
-            problems.push(format!("stderr lacks {s:?}"));
-        }
-    }
-    for s in ["panicked", "RUST_BACKTRACE", "stack backtrace"] {
-        if run.stderr.contains(s) {
-            problems.push(format!("stderr has panic text {s:?}"));
-        }
-    }
-    if !run.stdout.is_empty() {
-        problems.push("something was printed on stdout".to_string());
-    }
-    let after = dir.entries();
-    if after != before {
-        problems.push(format!("files before: {before:?}, after: {after:?}"));
-    }
-    if problems.is_empty() {
-        Vec::new()
-    } else {
-        vec![format!(
-            "{}:\n    {}\n{run}",
-            case.name,
-            problems.join("\n    ")
-        )]
-    }
-}
-
 #[test]
 fn bad_input_is_refused_with_a_message_naming_key_and_value() {
-    let failures: Vec<String> = BAD_INPUTS.iter().flat_map(check_bad_input).collect();
+    let failures: Vec<String> = BAD_INPUTS
+        .iter()
+        .flat_map(|case| check_bad_input("trace", case, &[]))
+        .collect();
     assert!(
         failures.is_empty(),
         "{} of {} bad inputs were not refused properly:\n\n{}",
@@ -685,29 +502,6 @@ fn every_step_is_a_row_by_default() {
 // ---------------------------------------------------------------------------------------
 // 4. Python readers.
 
-const PYTHON_MODULES: &str = "pandas, polars, pyarrow";
-
-/// The Python interpreter: `TOUCHDOWN_PYTHON`, or `python3`.
-fn python() -> String {
-    std::env::var("TOUCHDOWN_PYTHON").unwrap_or_else(|_| "python3".to_string())
-}
-
-/// Why the Python readers cannot run, or `None` when they can.
-fn python_unavailable() -> Option<String> {
-    match Command::new(python())
-        .args(["-c", &format!("import {PYTHON_MODULES}")])
-        .output()
-    {
-        Err(e) => Some(format!("cannot run {}: {e}", python())),
-        Ok(o) if !o.status.success() => Some(format!(
-            "{} cannot import {PYTHON_MODULES}: {}",
-            python(),
-            String::from_utf8_lossy(&o.stderr).trim()
-        )),
-        Ok(_) => None,
-    }
-}
-
 /// Runs `check_trace.py` on a file the binary writes with `args`.
 fn check_with_python(dir: &TempDir, args: &[&str], out: &str, legs: usize) {
     let mut all = vec!["trace", "--out", out];
@@ -717,42 +511,21 @@ fn check_with_python(dir: &TempDir, args: &[&str], out: &str, legs: usize) {
     let w = wrote(&run.stdout);
     assert_eq!(w.rows, w.steps.div_ceil(w.every));
 
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_trace.py");
-    let o = Command::new(python())
-        .arg(&script)
-        .arg(dir.join(out))
-        .arg(w.rows.to_string())
-        .arg(legs.to_string())
-        .output()
-        .expect("run check_trace.py");
-    assert!(
-        o.status.success(),
-        "{} found problems in the trace of `touchdown {}` ({:?}):\n{}{}",
-        script.display(),
-        all.join(" "),
-        o.status.code(),
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
+    run_python_check(
+        "check_trace.py",
+        &[
+            dir.join(out).as_os_str(),
+            w.rows.to_string().as_ref(),
+            legs.to_string().as_ref(),
+        ],
+        &format!("the trace of `touchdown {}`", all.join(" ")),
     );
 }
 
 #[test]
 fn python_readers_open_the_trace() {
-    if let Some(why) = python_unavailable() {
-        if std::env::var("TOUCHDOWN_SKIP_PYTHON").as_deref() == Ok("1") {
-            // Straight to the terminal: the test harness hides what `eprintln!` prints in a
-            // test that passes.
-            let _ = writeln!(
-                std::io::stderr(),
-                "\nSKIPPED python_readers_open_the_trace (TOUCHDOWN_SKIP_PYTHON=1): {why}"
-            );
-            return;
-        }
-        panic!(
-            "{why}\n\nThe Python readers are part of the tests: \
-             `pip install -r tests/python/requirements.txt`, \
-             or set TOUCHDOWN_SKIP_PYTHON=1 to skip this test."
-        );
+    if !python_readers_available("python_readers_open_the_trace") {
+        return;
     }
     let dir = TempDir::new("python");
     check_with_python(&dir, &[], "four-legs.arrow", 4);

@@ -2,4 +2,6 @@
 
 mod agreement;
 mod cli;
+mod common;
+mod sweep_cli;
 mod validation;

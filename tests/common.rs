@@ -1,0 +1,274 @@
+//! Helpers shared by the end-to-end tests of the command line (`cli`, `sweep_cli`): fresh
+//! temp folders, runs of the `touchdown` binary, bad-input checks and the Python readers.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+pub(crate) const BIN: &str = env!("CARGO_BIN_EXE_touchdown");
+
+/// A fresh, empty folder for one test.
+pub(crate) struct TempDir(PathBuf);
+
+impl TempDir {
+    pub(crate) fn new(test: &str) -> TempDir {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let dir =
+            std::env::temp_dir().join(format!("touchdown-cli-{test}-{}-{n}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create the test's temp folder");
+        TempDir(dir)
+    }
+
+    pub(crate) fn path(&self) -> &Path {
+        &self.0
+    }
+
+    pub(crate) fn join(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+
+    pub(crate) fn write(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.join(name);
+        std::fs::write(&p, text).expect("write a test file");
+        p
+    }
+
+    /// Names of the entries in the folder, sorted.
+    pub(crate) fn entries(&self) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(&self.0)
+            .expect("list the temp folder")
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("kept the files of the failed test in {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+/// What a run of the binary gave.
+pub(crate) struct Run {
+    pub(crate) args: Vec<String>,
+    pub(crate) code: Option<i32>,
+    pub(crate) stdout: String,
+    pub(crate) stderr: String,
+}
+
+impl Run {
+    /// Panics, showing the whole run, unless it succeeded quietly.
+    pub(crate) fn assert_ok(&self) -> &Self {
+        assert!(
+            self.code == Some(0) && self.stderr.is_empty(),
+            "expected success of {self}"
+        );
+        self
+    }
+}
+
+impl std::fmt::Display for Run {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "`touchdown {}`: exit code {:?}\n--- stdout ---\n{}--- stderr ---\n{}--------------",
+            self.args.join(" "),
+            self.code,
+            self.stdout,
+            self.stderr
+        )
+    }
+}
+
+/// Runs `touchdown ARGS` in `dir`, without a backtrace setting from the caller's
+/// environment (so that a panic shows its usual `RUST_BACKTRACE` note).
+pub(crate) fn touchdown(dir: &Path, args: &[&str]) -> Run {
+    let out = Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .env_remove("RUST_BACKTRACE")
+        .env_remove("RUST_LIB_BACKTRACE")
+        .output()
+        .expect("run the touchdown binary");
+    Run {
+        args: args.iter().map(ToString::to_string).collect(),
+        code: out.status.code(),
+        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+pub(crate) fn read_bytes(path: &Path) -> Vec<u8> {
+    std::fs::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input.
+
+/// One bad input: a scenario file (written as `scenario.toml` and passed with `--scenario`
+/// when given), further arguments of the subcommand, and what stderr must contain.
+pub(crate) struct BadInput {
+    pub(crate) name: &'static str,
+    pub(crate) scenario: Option<&'static str>,
+    pub(crate) args: &'static [&'static str],
+    pub(crate) expect: &'static [&'static str],
+}
+
+pub(crate) const fn bad_scenario(
+    name: &'static str,
+    scenario: &'static str,
+    expect: &'static [&'static str],
+) -> BadInput {
+    BadInput {
+        name,
+        scenario: Some(scenario),
+        args: &[],
+        expect,
+    }
+}
+
+pub(crate) const fn bad_args(
+    name: &'static str,
+    args: &'static [&'static str],
+    expect: &'static [&'static str],
+) -> BadInput {
+    BadInput {
+        name,
+        scenario: None,
+        args,
+        expect,
+    }
+}
+
+/// What is wrong with the run of `touchdown COMMAND` on one bad input (empty when it was
+/// refused properly: exit code 2, an error naming what `case` expects, no panic, nothing on
+/// stdout, no file made). `never` lists further text stderr must not have (such as the
+/// banner a command prints when it starts its work).
+pub(crate) fn check_bad_input(command: &str, case: &BadInput, never: &[&str]) -> Vec<String> {
+    let dir = TempDir::new("bad-input");
+    let mut args = vec![command];
+    if let Some(text) = case.scenario {
+        dir.write("scenario.toml", text);
+        args.extend(["--scenario", "scenario.toml"]);
+    }
+    args.extend(case.args);
+    let before = dir.entries();
+    let run = touchdown(dir.path(), &args);
+
+    let mut problems = Vec::new();
+    if run.code != Some(2) {
+        problems.push(format!("exit code {:?}, expected 2", run.code));
+    }
+    if !run.stderr.contains("error:") {
+        problems.push("stderr does not say `error:`".to_string());
+    }
+    for s in case.expect {
+        if !run.stderr.contains(s) {
+            problems.push(format!("stderr lacks {s:?}"));
+        }
+    }
+    for s in ["panicked", "RUST_BACKTRACE", "stack backtrace"] {
+        if run.stderr.contains(s) {
+            problems.push(format!("stderr has panic text {s:?}"));
+        }
+    }
+    for s in never {
+        if run.stderr.contains(s) {
+            problems.push(format!("stderr has {s:?}"));
+        }
+    }
+    if !run.stdout.is_empty() {
+        problems.push("something was printed on stdout".to_string());
+    }
+    let after = dir.entries();
+    if after != before {
+        problems.push(format!("files before: {before:?}, after: {after:?}"));
+    }
+    if problems.is_empty() {
+        Vec::new()
+    } else {
+        vec![format!(
+            "{}:\n    {}\n{run}",
+            case.name,
+            problems.join("\n    ")
+        )]
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Python readers.
+
+const PYTHON_MODULES: &str = "pandas, polars, pyarrow";
+
+/// The Python interpreter: `TOUCHDOWN_PYTHON`, or `python3`.
+pub(crate) fn python() -> String {
+    std::env::var("TOUCHDOWN_PYTHON").unwrap_or_else(|_| "python3".to_string())
+}
+
+/// Why the Python readers cannot run, or `None` when they can.
+fn python_unavailable() -> Option<String> {
+    match Command::new(python())
+        .args(["-c", &format!("import {PYTHON_MODULES}")])
+        .output()
+    {
+        Err(e) => Some(format!("cannot run {}: {e}", python())),
+        Ok(o) if !o.status.success() => Some(format!(
+            "{} cannot import {PYTHON_MODULES}: {}",
+            python(),
+            String::from_utf8_lossy(&o.stderr).trim()
+        )),
+        Ok(_) => None,
+    }
+}
+
+/// Whether the Python readers can run for `test`. When they cannot, the test is skipped
+/// (`false`, with a note on the terminal) if `TOUCHDOWN_SKIP_PYTHON=1`, and fails otherwise.
+pub(crate) fn python_readers_available(test: &str) -> bool {
+    let Some(why) = python_unavailable() else {
+        return true;
+    };
+    if std::env::var("TOUCHDOWN_SKIP_PYTHON").as_deref() == Ok("1") {
+        // Straight to the terminal: the test harness hides what `eprintln!` prints in a
+        // test that passes.
+        let _ = writeln!(
+            std::io::stderr(),
+            "\nSKIPPED {test} (TOUCHDOWN_SKIP_PYTHON=1): {why}"
+        );
+        return false;
+    }
+    panic!(
+        "{why}\n\nThe Python readers are part of the tests: \
+         `pip install -r tests/python/requirements.txt`, \
+         or set TOUCHDOWN_SKIP_PYTHON=1 to skip this test."
+    );
+}
+
+/// Runs `tests/python/SCRIPT ARGS`; panics with its output unless it exits 0. `what` says
+/// for the message which file it checked.
+pub(crate) fn run_python_check(script: &str, args: &[&std::ffi::OsStr], what: &str) {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/python")
+        .join(script);
+    let o = Command::new(python())
+        .arg(&script)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {}: {e}", script.display()));
+    assert!(
+        o.status.success(),
+        "{} found problems in {what} ({:?}):\n{}{}",
+        script.display(),
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
