@@ -83,8 +83,11 @@ pub fn parse_count(s: &str) -> Result<u64, String> {
     }
     let bad = || format!("{s:?} is not a whole number (examples: 250000, 1e6, 2.5e5)");
     let x: f64 = t.parse().map_err(|_| bad())?;
-    if !x.is_finite() || x < 0.0 || x.fract() != 0.0 || x > 2f64.powi(63) {
+    if !x.is_finite() || x < 0.0 || x.fract() != 0.0 {
         return Err(bad());
+    }
+    if x > 2f64.powi(63) {
+        return Err(format!("{s:?} is too large (at most 2^63)"));
     }
     Ok(x as u64)
 }
@@ -184,10 +187,11 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         .build()?;
     let model = Model::new(&scenario);
     eprintln!(
-        "touchdown sweep: {samples} samples, seed {}, kernel {} ({} landers per block), {threads} threads",
+        "touchdown sweep: {samples} samples, seed {}, kernel {} ({} landers per block), {threads} thread{}",
         scenario.seed,
         kernels::lane::LANE_NAME,
         kernels::lane::LANES,
+        if threads == 1 { "" } else { "s" },
     );
     let info = SweepInfo {
         scenario_toml: &text,
