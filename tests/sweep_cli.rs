@@ -56,7 +56,11 @@ fn banner(run: &Run) -> Banner {
         Some(Banner {
             samples: parts[0].strip_suffix(" samples")?.parse().ok()?,
             seed: parts[1].strip_prefix("seed ")?.parse().ok()?,
-            threads: parts[3].strip_suffix(" threads")?.parse().ok()?,
+            threads: parts[3]
+                .strip_suffix(" threads")
+                .or_else(|| parts[3].strip_suffix(" thread"))?
+                .parse()
+                .ok()?,
         })
     };
     parse().unwrap_or_else(|| panic!("cannot read the banner {line:?} of {run}"))

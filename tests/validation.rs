@@ -1053,8 +1053,18 @@ fn honeycomb_energy_balance() {
         let k = s.surface.stiffness_n_per_m;
         let release = 4.0 * ((1.75 * f).powi(2) - f * f) / (2.0 * k);
         let case = format!("50 psi not pre-crushed, v0 {v0}");
-        table.at_least(&case, "energy lost - absorbed (J)", c.lost_j - c.absorbed_j, 0.0);
-        table.at_most(&case, "energy lost - absorbed (J)", c.lost_j - c.absorbed_j, release);
+        table.at_least(
+            &case,
+            "energy lost - absorbed (J)",
+            c.lost_j - c.absorbed_j,
+            0.0,
+        );
+        table.at_most(
+            &case,
+            "energy lost - absorbed (J)",
+            c.lost_j - c.absorbed_j,
+            release,
+        );
     }
     table.finish();
 }

@@ -48,7 +48,9 @@ pub fn piece_end(h: &HoneycombParams, stroke_m: Lane) -> Lane {
     for (stage_end, _) in h.stages.iter().rev() {
         end = stroke_m.simd_lt(*stage_end).select(*stage_end, end);
     }
-    stroke_m.simd_lt(h.peak_stroke_m).select(h.peak_stroke_m, end)
+    stroke_m
+        .simd_lt(h.peak_stroke_m)
+        .select(h.peak_stroke_m, end)
 }
 
 /// The stroke increment that caps the axial load at the crush force, and the normal force

@@ -127,7 +127,9 @@ mod tests {
         assert!((absorbed_between(&h, 0.0, 0.05) - whole).abs() < 1e-12);
         let parts = absorbed_between(&h, 0.0, 0.0011) + absorbed_between(&h, 0.0011, 0.05);
         assert!((parts - whole).abs() < 1e-12);
-        assert!((absorbed_between(&h, 0.019, 0.021) - (0.001 * 100.0 + 0.001 * 300.0)).abs() < 1e-12);
+        assert!(
+            (absorbed_between(&h, 0.019, 0.021) - (0.001 * 100.0 + 0.001 * 300.0)).abs() < 1e-12
+        );
     }
 
     #[test]
