@@ -187,9 +187,10 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         .build()?;
     let model = Model::new(&scenario);
     eprintln!(
-        "touchdown sweep: {samples} samples, seed {}, kernel {} ({} landers per block), {threads} thread{}",
+        "touchdown sweep: {samples} samples, seed {}, kernel {} {} ({} landers per block), {threads} thread{}",
         scenario.seed,
         kernels::lane::LANE_NAME,
+        kernels::lane::INSTRUCTION_SET,
         kernels::lane::LANES,
         if threads == 1 { "" } else { "s" },
     );

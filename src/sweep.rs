@@ -1,10 +1,11 @@
 //! Runs many samples through the SIMD kernels: blocks of lanes, lane refill, per-lane
 //! clocks, rayon over the cores, rows handed on in sample order.
 //!
-//! The sample range is cut into chunks of consecutive indices. A worker takes a chunk and
-//! streams it through one block: a lane whose sample is decided takes the next sample of
-//! the chunk at once. Chunks are processed a window at a time in parallel and their rows
-//! passed on in order, so memory holds one window of rows whatever the sample count.
+//! Every thread streams samples through one block: a lane whose sample is decided takes
+//! the next sample index at once, from a counter shared by the threads. Rows are passed on
+//! a window of consecutive indices at a time, in order, so memory holds about two windows
+//! of rows whatever the sample count; blocks keep their lanes from one window to the next,
+//! so the last (longest) samples of a window do not leave the block half empty.
 
 use crate::reference::model::Surface;
 use crate::reference::outcome::{LegSummary, Outcome, Summary};
@@ -18,6 +19,7 @@ use kernels::params::{HoneycombParams, LegParams, Params, lane};
 use kernels::vec3::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// One finished sample: its inputs and its results.
 #[derive(Debug, Clone, PartialEq)]
@@ -57,7 +59,9 @@ pub fn kernel_params(m: &Model) -> Params {
     Params {
         gravity_m_s2: lane(m.gravity_m_s2),
         mass_kg: lane(m.mass_kg),
+        inverse_mass_per_kg: lane(1.0 / m.mass_kg),
         inertia_kg_m2: v(m.inertia_kg_m2),
+        inverse_inertia: v(m.inertia_kg_m2.recip()),
         legs: m
             .legs
             .iter()
@@ -71,6 +75,7 @@ pub fn kernel_params(m: &Model) -> Params {
         damping_n_s_per_m: lane(m.contact.damping_n_s_per_m),
         friction_coefficient: lane(m.contact.friction_coefficient),
         friction_stiffness_n_per_m: lane(m.contact.friction_stiffness_n_per_m),
+        friction_compliance_m_per_n: lane(1.0 / m.contact.friction_stiffness_n_per_m),
         friction_damping_n_s_per_m: lane(m.contact.friction_damping_n_s_per_m),
         honeycomb: m.honeycomb.as_ref().map(|h| HoneycombParams {
             stages: h.stages.iter().map(|(e, f)| (lane(*e), lane(*f))).collect(),
@@ -84,12 +89,12 @@ pub fn kernel_params(m: &Model) -> Params {
         long_flight_steps: m.flight_step_max_s > m.step_s,
         t_max_s: lane(m.t_max_s),
         leg_reach_m: lane(m.leg_reach_m()),
-        rest_speed_m_s: lane(m.thresholds.rest_speed_m_s),
-        rest_rate_rad_s: lane(m.thresholds.rest_rate_rad_s),
+        rest_speed_squared: lane(m.thresholds.rest_speed_m_s.powi(2)),
+        rest_rate_squared: lane(m.thresholds.rest_rate_rad_s.powi(2)),
         hold_time_s: lane(m.thresholds.hold_time_s),
         bounce_clearance_m: lane(m.thresholds.bounce_clearance_m),
-        diverged_speed_m_s: lane(m.thresholds.diverged_speed_m_s),
-        diverged_rate_rad_s: lane(m.thresholds.diverged_rate_rad_s),
+        diverged_speed_squared: lane(m.thresholds.diverged_speed_m_s.powi(2)),
+        diverged_rate_squared: lane(m.thresholds.diverged_rate_rad_s.powi(2)),
         diverged_penetration_m: lane(m.thresholds.diverged_penetration_m),
         rest_contacts: lane(m.legs.len().min(3) as f64),
     }
@@ -131,7 +136,7 @@ fn lane_summary(block: &Block, i: usize) -> Summary {
         final_tilt_deg: finite_or_zero(cos_tilt.clamp(-1.0, 1.0).acos().to_degrees()),
         max_tilt_deg: at(&t.min_cos_tilt).clamp(-1.0, 1.0).acos().to_degrees(),
         displacement_m: finite_or_zero(along.length()),
-        peak_acceleration_m_s2: finite_or_zero(at(&t.peak_acceleration)),
+        peak_acceleration_m_s2: finite_or_zero(at(&t.peak_acceleration_squared).sqrt()),
         peak_acceleration_z_body_m_s2: finite_or_zero(at(&t.peak_acceleration_z)),
         bounces: at(&t.bounces) as u32,
         first_contact_s: (!first.is_nan()).then_some(first),
@@ -148,62 +153,112 @@ fn lane_summary(block: &Block, i: usize) -> Summary {
     }
 }
 
-/// Runs the samples of `range` through one block with lane refill; rows in sample order.
-#[must_use]
-pub fn run_chunk(
-    scenario: &Scenario,
-    model: &Model,
-    params: &Params,
-    range: Range<u64>,
-) -> (Vec<Row>, LaneStats) {
-    let mut block = Block::new(params);
-    let mut samples: [Option<Sample>; LANES] = [None; LANES];
-    let mut next = range.start;
-    let mut rows = Vec::with_capacity((range.end - range.start) as usize);
-    let mut stats = LaneStats::default();
-    let refill = |block: &mut Block, slot: &mut Option<Sample>, i: usize, next: &mut u64| {
-        if *next < range.end {
-            let s = sampling::sample(scenario, *next);
-            block.load(i, &lane_init(model, &s));
-            *slot = Some(s);
-            *next += 1;
-        } else {
-            block.retire(i);
-            *slot = None;
-        }
-    };
-    for (i, slot) in samples.iter_mut().enumerate() {
-        refill(&mut block, slot, i, &mut next);
+/// One block and the samples its lanes hold: a worker's state, kept from one window to the
+/// next so that a block never waits, half empty, for the last samples of a window.
+struct Worker {
+    block: Block,
+    samples: [Option<Sample>; LANES],
+}
+
+/// Where a worker takes samples from, and when it may stop.
+struct Feed<'a> {
+    /// The next sample index to take.
+    next: &'a AtomicU64,
+    /// Samples from `next` up to here may be taken.
+    cap: u64,
+    /// The end of the window being completed.
+    window_end: u64,
+    /// Samples below `window_end` not yet decided, in all workers.
+    outstanding: &'a AtomicU64,
+}
+
+impl Feed<'_> {
+    /// The next sample index, if one below `cap` is left.
+    fn take(&self) -> Option<u64> {
+        self.next
+            .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |n| {
+                (n < self.cap).then_some(n + 1)
+            })
+            .ok()
     }
-    loop {
-        let busy = block.active.to_bitmask().count_ones() as u64;
-        if busy == 0 {
-            break;
+}
+
+impl Worker {
+    fn new(params: &Params) -> Worker {
+        Worker {
+            block: Block::new(params),
+            samples: [None; LANES],
         }
-        stats.busy_lane_steps += busy;
-        stats.lane_steps += LANES as u64;
-        let dt = kernels::step::step_size(params, &block);
-        kernels::step::step(params, &mut block, dt);
-        let decided = kernels::outcome::observe(params, &mut block);
-        if decided.to_bitmask() != 0 {
-            for (i, done) in mask_to(decided).into_iter().enumerate() {
-                if done {
-                    let sample = samples[i].expect("a decided lane holds a sample");
-                    rows.push(Row {
-                        sample,
-                        summary: lane_summary(&block, i),
-                    });
-                    refill(&mut block, &mut samples[i], i, &mut next);
+    }
+
+    /// Puts the next sample of `feed` into lane `i`, or empties the lane if none is left.
+    fn refill(&mut self, scenario: &Scenario, model: &Model, feed: &Feed, i: usize) {
+        if let Some(index) = feed.take() {
+            let s = sampling::sample(scenario, index);
+            self.block.load(i, &lane_init(model, &s));
+            self.samples[i] = Some(s);
+        } else {
+            self.block.retire(i);
+            self.samples[i] = None;
+        }
+    }
+
+    /// Steps the block, refilling lanes from `feed`, until every sample below
+    /// `feed.window_end` is decided (in this worker or another), or until this block is
+    /// empty and nothing is left to take. Lanes may hold samples of the next window when it
+    /// returns; their rows come with a later call. Rows in no particular order.
+    fn run(
+        &mut self,
+        scenario: &Scenario,
+        model: &Model,
+        params: &Params,
+        feed: &Feed,
+    ) -> (Vec<Row>, LaneStats) {
+        let mut rows = Vec::new();
+        let mut stats = LaneStats::default();
+        for i in 0..LANES {
+            if self.samples[i].is_none() {
+                self.refill(scenario, model, feed, i);
+            }
+        }
+        while feed.outstanding.load(Ordering::Relaxed) > 0 {
+            let busy = self.block.active.to_bitmask().count_ones() as u64;
+            if busy == 0 {
+                break;
+            }
+            stats.busy_lane_steps += busy;
+            stats.lane_steps += LANES as u64;
+            let dt = kernels::step::step_size(params, &self.block);
+            kernels::step::step(params, &mut self.block, dt);
+            let decided = kernels::outcome::observe(params, &mut self.block);
+            if decided.to_bitmask() != 0 {
+                for (i, done) in mask_to(decided).into_iter().enumerate() {
+                    if done {
+                        let sample = self.samples[i].expect("a decided lane holds a sample");
+                        if sample.index < feed.window_end {
+                            feed.outstanding.fetch_sub(1, Ordering::Relaxed);
+                        }
+                        rows.push(Row {
+                            sample,
+                            summary: lane_summary(&self.block, i),
+                        });
+                        self.refill(scenario, model, feed, i);
+                    }
                 }
             }
         }
+        (rows, stats)
     }
-    rows.sort_unstable_by_key(|r| r.sample.index);
-    (rows, stats)
 }
 
-/// Runs `range` on the current rayon pool, `chunk` samples per task, handing each window of
-/// rows, in sample order, to `sink`. Stops early when `sink` returns an error.
+/// Runs `range` on the current rayon pool, one worker (one block) per thread, handing rows
+/// to `sink` a window of `4 * chunk` samples per thread at a time, in sample order. Stops
+/// early when `sink` returns an error.
+///
+/// The workers take samples one at a time from a shared counter. Once the samples of a
+/// window run out, lanes go on to those of the next window while the last samples of this
+/// one finish; their rows are kept for the next window. Memory holds two windows of rows
+/// whatever the sample count.
 pub fn run(
     scenario: &Scenario,
     model: &Model,
@@ -212,24 +267,44 @@ pub fn run(
     mut sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
 ) -> anyhow::Result<LaneStats> {
     let params = kernel_params(model);
-    let window = chunk * 4 * rayon::current_num_threads() as u64;
+    let threads = rayon::current_num_threads();
+    let window = chunk.max(1) * 4 * threads as u64;
+    let mut workers: Vec<Worker> = (0..threads).map(|_| Worker::new(&params)).collect();
+    let next = AtomicU64::new(range.start);
+    let mut carried: Vec<Row> = Vec::new();
     let mut stats = LaneStats::default();
     let mut start = range.start;
     while start < range.end {
-        let end = (start + window).min(range.end);
-        let chunks: Vec<Range<u64>> = (start..end)
-            .step_by(chunk as usize)
-            .map(|s| s..(s + chunk).min(end))
-            .collect();
-        let results: Vec<(Vec<Row>, LaneStats)> = chunks
-            .into_par_iter()
-            .map(|r| run_chunk(scenario, model, &params, r))
-            .collect();
-        let mut rows = Vec::with_capacity((end - start) as usize);
+        let end = start.saturating_add(window).min(range.end);
+        let done = carried.len() as u64;
+        let outstanding = AtomicU64::new(end - start - done);
+        let feed = Feed {
+            next: &next,
+            cap: end.saturating_add(window).min(range.end),
+            window_end: end,
+            outstanding: &outstanding,
+        };
+        let results: Vec<(Vec<Row>, LaneStats)> = if outstanding.load(Ordering::Relaxed) == 0 {
+            Vec::new()
+        } else {
+            workers
+                .par_iter_mut()
+                .map(|w| w.run(scenario, model, &params, &feed))
+                .collect()
+        };
+        let mut rows = std::mem::take(&mut carried);
         for (r, s) in results {
-            rows.extend(r);
             stats = stats.add(s);
+            for row in r {
+                if row.sample.index < end {
+                    rows.push(row);
+                } else {
+                    carried.push(row);
+                }
+            }
         }
+        rows.sort_unstable_by_key(|r| r.sample.index);
+        debug_assert_eq!(rows.len() as u64, end - start);
         sink(rows)?;
         start = end;
     }

@@ -33,7 +33,7 @@ const THREE_LEGS: &str = "[lander]\nlegs = 3\n\n[simulation]\nt_max_s = 20.0\n";
 // What the binary prints.
 
 /// The one-line banner on stderr:
-/// `touchdown sweep: N samples, seed S, kernel K (L landers per block), T threads`.
+/// `touchdown sweep: N samples, seed S, kernel K ISA (L landers per block), T threads`.
 #[derive(Debug, PartialEq)]
 struct Banner {
     samples: u64,
@@ -49,7 +49,7 @@ fn banner(run: &Run) -> Banner {
     let parse = || -> Option<Banner> {
         let rest = line.strip_prefix("touchdown sweep: ")?;
         let parts: Vec<&str> = rest.split(", ").collect();
-        // ["N samples", "seed S", "kernel K (L landers per block)", "T threads"]
+        // ["N samples", "seed S", "kernel K ISA (L landers per block)", "T threads"]
         if parts.len() != 4 || !parts[2].starts_with("kernel ") {
             return None;
         }

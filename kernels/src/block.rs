@@ -3,7 +3,7 @@
 
 use crate::lane::{LANES, Lane, all_false, splat};
 use crate::params::Params;
-use crate::vec3::{Quat, Vec3};
+use crate::vec3::{Mat3, Quat, Vec3};
 
 /// What a leg remembers between steps, per lane.
 #[derive(Debug, Clone, Copy)]
@@ -47,7 +47,9 @@ pub struct Track {
     pub start_m: Vec3,
     pub rest_s: Lane,
     pub min_cos_tilt: Lane,
-    pub peak_acceleration: Lane,
+    /// The squared peak contact acceleration (its root, taken once at the end, is the
+    /// peak of the roots).
+    pub peak_acceleration_squared: Lane,
     pub peak_acceleration_z: Lane,
     pub bounces: Lane,
     /// Mask: touched since the last lift-off.
@@ -68,6 +70,9 @@ pub struct Block {
     pub position_m: Vec3,
     pub velocity_m_s: Vec3,
     pub attitude: Quat,
+    /// The rotation matrix of `attitude`, kept with it (by `step` and `load`) so that
+    /// `step_size`, `step` and `observe` do not each rebuild it.
+    pub rotation: Mat3,
     pub rate_rad_s: Vec3,
     pub legs: Vec<LegLanes>,
     pub surface: SurfaceLanes,
@@ -81,7 +86,8 @@ pub struct Block {
     pub moment_n_m: Vec3,
     pub start_position_m: Vec3,
     pub start_velocity_m_s: Vec3,
-    pub start_attitude: Quat,
+    /// `Z_B` in I at the start of the step (the third column of its rotation).
+    pub start_z_body: Vec3,
     pub start_rate_rad_s: Vec3,
     pub start_t_s: Lane,
     pub dt_s: Lane,
@@ -133,6 +139,7 @@ impl Block {
             position_m: Vec3::ZERO,
             velocity_m_s: Vec3::ZERO,
             attitude: identity,
+            rotation: identity.to_mat3(),
             rate_rad_s: Vec3::ZERO,
             legs: vec![leg; params.legs.len()],
             surface: SurfaceLanes {
@@ -147,7 +154,7 @@ impl Block {
                 start_m: Vec3::ZERO,
                 rest_s: zero,
                 min_cos_tilt: splat(1.0),
-                peak_acceleration: zero,
+                peak_acceleration_squared: zero,
                 peak_acceleration_z: zero,
                 bounces: zero,
                 touched: all_false(),
@@ -162,7 +169,7 @@ impl Block {
             moment_n_m: Vec3::ZERO,
             start_position_m: Vec3::ZERO,
             start_velocity_m_s: Vec3::ZERO,
-            start_attitude: identity,
+            start_z_body: Vec3::splat([0.0, 0.0, 1.0]),
             start_rate_rad_s: Vec3::ZERO,
             start_t_s: zero,
             dt_s: zero,
@@ -176,6 +183,8 @@ impl Block {
         self.position_m.set_lane(i, init.position_m);
         self.velocity_m_s.set_lane(i, init.velocity_m_s);
         self.attitude.set_lane(i, init.attitude);
+        // The other lanes get what they hold already: the same formula of the same inputs.
+        self.rotation = self.attitude.to_mat3();
         self.rate_rad_s.set_lane(i, init.rate_rad_s);
         for leg in &mut self.legs {
             set(&mut leg.stroke_m, 0.0);
@@ -195,7 +204,7 @@ impl Block {
         t.start_m.set_lane(i, init.position_m);
         set(&mut t.rest_s, 0.0);
         set(&mut t.min_cos_tilt, 1.0);
-        set(&mut t.peak_acceleration, 0.0);
+        set(&mut t.peak_acceleration_squared, 0.0);
         set(&mut t.peak_acceleration_z, 0.0);
         set(&mut t.bounces, 0.0);
         set(&mut t.touched, 0.0);

@@ -24,16 +24,28 @@ pub fn leg_force(
 ) -> (Vec3, Lane, Lane) {
     let zero = splat(0.0);
     let normal_velocity = normal.dot(tip_velocity);
-    let mut normal_n =
-        (p.stiffness_n_per_m * penetration - p.damping_n_s_per_m * normal_velocity).max(zero);
+    let mut normal_n = p
+        .stiffness_n_per_m
+        .mul_sub(penetration, p.damping_n_s_per_m * normal_velocity)
+        .max(zero);
 
-    leg.anchor_m = Vec3::select(contact & !leg.anchored, tip, leg.anchor_m);
+    // As the reference's `if !leg.anchored`: lanes touching down anchor at the footpad
+    // (rare, so the block only writes the anchors when one does).
+    let touches_down = contact & !leg.anchored;
+    if touches_down.to_bitmask() != 0 {
+        leg.anchor_m = Vec3::select(touches_down, tip, leg.anchor_m);
+    }
     leg.anchored = contact;
     let slip = tip - leg.anchor_m;
-    let slip_t = slip - normal * normal.dot(slip);
-    let velocity_t = tip_velocity - normal * normal_velocity;
-    let mut friction =
-        -(slip_t * p.friction_stiffness_n_per_m) - velocity_t * p.friction_damping_n_s_per_m;
+    let slip_t = normal.mul_neg_add(normal.dot(slip), slip);
+    let velocity_t = normal.mul_neg_add(normal_velocity, tip_velocity);
+    // -(slip_t k) - velocity_t c, each component one multiply and one fused multiply-add.
+    let (k, c) = (p.friction_stiffness_n_per_m, p.friction_damping_n_s_per_m);
+    let mut friction = Vec3::new(
+        slip_t.x.mul_neg_sub(k, velocity_t.x * c),
+        slip_t.y.mul_neg_sub(k, velocity_t.y * c),
+        slip_t.z.mul_neg_sub(k, velocity_t.z * c),
+    );
 
     if let Some(h) = &p.honeycomb {
         let cap = p.friction_coefficient * normal_n;
@@ -57,14 +69,21 @@ pub fn leg_force(
 
     let cap = p.friction_coefficient * normal_n;
     let magnitude = friction.length();
-    let slips = magnitude.simd_gt(cap);
-    friction = friction * slips.select(cap / magnitude, splat(1.0));
-    leg.anchor_m = Vec3::select(
-        slips & contact,
-        tip + friction * (splat(1.0) / p.friction_stiffness_n_per_m),
-        leg.anchor_m,
-    );
+    let slips = magnitude.simd_gt(cap) & contact;
+    // Where no lane slips, the friction keeps its length: only slipping lanes need the
+    // division and the new length.
+    let mut friction_n = magnitude;
+    if slips.to_bitmask() != 0 {
+        friction = friction * slips.select(cap / magnitude, splat(1.0));
+        // Slip: move the anchor so that the spring alone would give the capped force.
+        leg.anchor_m = Vec3::select(
+            slips,
+            friction.mul_add(p.friction_compliance_m_per_n, tip),
+            leg.anchor_m,
+        );
+        friction_n = friction.length();
+    }
     let normal_n = contact.select(normal_n, zero);
-    let force = Vec3::select(contact, normal * normal_n + friction, Vec3::ZERO);
-    (force, normal_n, contact.select(friction.length(), zero))
+    let force = Vec3::select(contact, normal.mul_add(normal_n, friction), Vec3::ZERO);
+    (force, normal_n, contact.select(friction_n, zero))
 }

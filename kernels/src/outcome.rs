@@ -2,7 +2,7 @@
 //! and in the same order (see there for the rules).
 
 use crate::block::Block;
-use crate::lane::{Lane, all_false, splat};
+use crate::lane::{Lane, all_false, max_into, min_into, splat};
 use crate::params::Params;
 use crate::vec3::Vec3;
 
@@ -17,6 +17,16 @@ pub const BOUNCING: f64 = 3.0;
 /// Code of `diverged`.
 pub const DIVERGED: f64 = 4.0;
 
+/// Mask: every one of `xs` is finite. `x * 0` is 0 for a finite `x` and NaN for an infinite
+/// or NaN one, so the sum of the products is 0 exactly when all are finite.
+#[inline(always)]
+fn all_finite<const N: usize>(xs: [Lane; N]) -> Lane {
+    let zero = splat(0.0);
+    xs.iter()
+        .fold(zero, |sum, x| x.mul_add(zero, sum))
+        .simd_eq(zero)
+}
+
 /// Takes in the step just made; returns the mask of lanes decided by it (their code is in
 /// `block.track.outcome`).
 #[inline(never)]
@@ -26,22 +36,24 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
     let active = block.active & block.track.outcome.simd_lt(zero);
     let t = &mut block.track;
     t.steps += active.select(one, zero);
-    let rotation = block.start_attitude.to_mat3();
-    let acceleration = block.force_n * (one / p.mass_kg);
-    t.peak_acceleration = t.peak_acceleration.max(acceleration.length());
-    let z_body = rotation.z_axis;
-    t.peak_acceleration_z = t.peak_acceleration_z.max(acceleration.dot(z_body).abs());
+    let acceleration = block.force_n * p.inverse_mass_per_kg;
+    // The accumulators below (peaks, least tilt cosine, deepest penetration) start finite
+    // and never become NaN: `max_into` and `min_into` apply.
+    t.peak_acceleration_squared =
+        max_into(t.peak_acceleration_squared, acceleration.length_squared());
+    let z_body = block.start_z_body;
+    t.peak_acceleration_z = max_into(t.peak_acceleration_z, acceleration.dot(z_body).abs());
     let cos_tilt = z_body.dot(block.surface.normal);
-    t.min_cos_tilt = t.min_cos_tilt.min(cos_tilt);
+    t.min_cos_tilt = min_into(t.min_cos_tilt, cos_tilt);
 
     let mut contacts = zero;
     let mut deepest = splat(f64::NEG_INFINITY);
     for (leg, step) in block.legs.iter_mut().zip(&block.leg_step) {
-        leg.peak_normal_n = leg.peak_normal_n.max(step.normal_n);
+        leg.peak_normal_n = max_into(leg.peak_normal_n, step.normal_n);
         contacts += step.penetration_m.simd_gt(zero).select(one, zero);
-        deepest = deepest.max(step.penetration_m);
+        deepest = max_into(deepest, step.penetration_m);
     }
-    t.max_penetration = t.max_penetration.max(deepest);
+    t.max_penetration = max_into(t.max_penetration, deepest);
     let touching = contacts.simd_gt(zero);
     t.first_contact_s =
         (touching & t.first_contact_s.is_nan()).select(block.start_t_s, t.first_contact_s);
@@ -49,18 +61,24 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
     t.bounces += lifted.select(one, zero);
     t.touched = touching | (t.touched & !lifted);
 
-    let finite = block.position_m.x.is_finite()
-        & block.position_m.y.is_finite()
-        & block.position_m.z.is_finite()
-        & block.velocity_m_s.length().is_finite()
-        & block.rate_rad_s.length().is_finite()
-        & block.attitude.w.is_finite()
-        & block.attitude.x.is_finite()
-        & block.attitude.y.is_finite()
-        & block.attitude.z.is_finite();
+    let (x, v, w, q) = (
+        &block.position_m,
+        &block.velocity_m_s,
+        &block.rate_rad_s,
+        &block.attitude,
+    );
+    let finite = all_finite([
+        x.x, x.y, x.z, v.x, v.y, v.z, w.x, w.y, w.z, q.x, q.y, q.z, q.w,
+    ]);
     let diverged = !finite
-        | block.velocity_m_s.length().simd_gt(p.diverged_speed_m_s)
-        | block.rate_rad_s.length().simd_gt(p.diverged_rate_rad_s)
+        | block
+            .velocity_m_s
+            .length_squared()
+            .simd_gt(p.diverged_speed_squared)
+        | block
+            .rate_rad_s
+            .length_squared()
+            .simd_gt(p.diverged_rate_squared)
         | deepest.simd_gt(p.diverged_penetration_m);
 
     let mut inside = !all_false();
@@ -68,28 +86,37 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
     if !p.edges.is_empty() {
         let n = block.leg_step.len() as f64;
         let centroid = block.leg_step.iter().fold(Vec3::ZERO, |c, l| c + l.tip_m) * splat(1.0 / n);
+        // Seen along gravity: `outward` is horizontal, so only x and y enter its products.
         for [i, j] in &p.edges {
             let (a, c) = (&block.leg_step[*i], &block.leg_step[*j]);
             let edge = c.tip_m - a.tip_m;
             let mut outward = Vec3::new(edge.y, -edge.x, zero);
             outward = Vec3::select(
-                outward.dot(centroid - a.tip_m).simd_gt(zero),
+                outward.dot_xy(centroid - a.tip_m).simd_gt(zero),
                 -outward,
                 outward,
             );
-            let beyond = outward.dot(block.start_position_m - a.tip_m).simd_gt(zero);
-            inside = inside & !beyond;
+            let beyond = outward
+                .dot_xy(block.start_position_m - a.tip_m)
+                .simd_gt(zero);
+            inside &= !beyond;
             let away = outward
-                .dot(block.start_velocity_m_s - a.tip_velocity_m_s)
+                .dot_xy(block.start_velocity_m_s - a.tip_velocity_m_s)
                 .simd_gt(zero);
             let edge_touches = a.penetration_m.simd_gt(zero) | c.penetration_m.simd_gt(zero);
-            tipping = tipping | (beyond & away & edge_touches);
+            tipping |= beyond & away & edge_touches;
         }
     }
     let tipped = cos_tilt.simd_lt(zero) | tipping;
 
-    let at_rest = block.start_velocity_m_s.length().simd_lt(p.rest_speed_m_s)
-        & block.start_rate_rad_s.length().simd_lt(p.rest_rate_rad_s)
+    let at_rest = block
+        .start_velocity_m_s
+        .length_squared()
+        .simd_lt(p.rest_speed_squared)
+        & block
+            .start_rate_rad_s
+            .length_squared()
+            .simd_lt(p.rest_rate_squared)
         & contacts.simd_ge(p.rest_contacts)
         & inside;
     t.rest_s = at_rest.select(t.rest_s + block.dt_s, zero);

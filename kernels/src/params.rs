@@ -27,12 +27,20 @@ pub struct HoneycombParams {
 }
 
 /// Everything the kernels hold fixed over a sweep.
+///
+/// Besides the parameters themselves it holds what the step would otherwise recompute
+/// from them every time: reciprocals (the step multiplies by them instead of dividing)
+/// and squared thresholds (compared with squared lengths, without a square root).
 #[derive(Debug, Clone)]
 #[allow(missing_docs)]
 pub struct Params {
     pub gravity_m_s2: Lane,
     pub mass_kg: Lane,
+    /// `1 / mass_kg`.
+    pub inverse_mass_per_kg: Lane,
     pub inertia_kg_m2: Vec3,
+    /// `1 / inertia_kg_m2`, per axis.
+    pub inverse_inertia: Vec3,
     pub legs: Vec<LegParams>,
     /// Edges of the support polygon (indices into `legs`).
     pub edges: Vec<[usize; 2]>,
@@ -40,6 +48,8 @@ pub struct Params {
     pub damping_n_s_per_m: Lane,
     pub friction_coefficient: Lane,
     pub friction_stiffness_n_per_m: Lane,
+    /// `1 / friction_stiffness_n_per_m`.
+    pub friction_compliance_m_per_n: Lane,
     pub friction_damping_n_s_per_m: Lane,
     pub honeycomb: Option<HoneycombParams>,
     pub terrain: Option<Terrain>,
@@ -49,12 +59,16 @@ pub struct Params {
     pub long_flight_steps: bool,
     pub t_max_s: Lane,
     pub leg_reach_m: Lane,
-    pub rest_speed_m_s: Lane,
-    pub rest_rate_rad_s: Lane,
+    /// `rest_speed_m_s^2`.
+    pub rest_speed_squared: Lane,
+    /// `rest_rate_rad_s^2`.
+    pub rest_rate_squared: Lane,
     pub hold_time_s: Lane,
     pub bounce_clearance_m: Lane,
-    pub diverged_speed_m_s: Lane,
-    pub diverged_rate_rad_s: Lane,
+    /// `diverged_speed_m_s^2`.
+    pub diverged_speed_squared: Lane,
+    /// `diverged_rate_rad_s^2`.
+    pub diverged_rate_squared: Lane,
     pub diverged_penetration_m: Lane,
     /// Legs that must touch for rest: three, or all when fewer.
     pub rest_contacts: Lane,

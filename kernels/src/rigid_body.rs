@@ -4,7 +4,8 @@ use crate::lane::{Lane, splat};
 use crate::vec3::{Quat, Vec3};
 
 /// Advances position, velocity, rates and attitude of every lane by its own `dt` (0 leaves
-/// a lane as it is).
+/// a lane as it is). Divisions by the mass and the moments of inertia are multiplications
+/// by their reciprocals, computed once per sweep.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn integrate(
@@ -12,34 +13,43 @@ pub fn integrate(
     velocity_m_s: &mut Vec3,
     attitude: &mut Quat,
     rate_rad_s: &mut Vec3,
-    mass_kg: Lane,
+    inverse_mass_per_kg: Lane,
     inertia_kg_m2: Vec3,
+    inverse_inertia: Vec3,
     gravity_m_s2: Lane,
     force_n: Vec3,
     moment_n_m: Vec3,
     dt: Lane,
 ) {
-    let acceleration = force_n * (splat(1.0) / mass_kg);
-    let kicked = *velocity_m_s + acceleration * dt;
+    let acceleration = force_n * inverse_mass_per_kg;
+    let kicked = acceleration.mul_add(dt, *velocity_m_s);
     let fall = gravity_m_s2 * (splat(0.5) * dt * dt);
-    *position_m = *position_m + kicked * dt;
-    position_m.z = position_m.z - fall;
+    *position_m = kicked.mul_add(dt, *position_m);
+    position_m.z -= fall;
     *velocity_m_s = kicked;
-    velocity_m_s.z = velocity_m_s.z - gravity_m_s2 * dt;
+    velocity_m_s.z = gravity_m_s2.mul_neg_add(dt, velocity_m_s.z);
 
     // Euler's equations by the implicit midpoint rule, as the reference.
     let i = inertia_kg_m2;
     let w0 = *rate_rad_s;
     let half_dt = splat(0.5) * dt;
+    // (dt / 2) / I per axis, once: a pass is then one multiply-add per axis.
+    let inv = inverse_inertia;
+    let half_dt_per_i = Vec3::new(inv.x * half_dt, inv.y * half_dt, inv.z * half_dt);
     let mut mid = w0;
     for _ in 0..MIDPOINT_PASSES {
         let gyro = mid.cross(Vec3::new(i.x * mid.x, i.y * mid.y, i.z * mid.z));
         let torque = moment_n_m - gyro;
-        mid = w0 + Vec3::new(torque.x / i.x, torque.y / i.y, torque.z / i.z) * half_dt;
+        let h = half_dt_per_i;
+        mid = Vec3::new(
+            torque.x.mul_add(h.x, w0.x),
+            torque.y.mul_add(h.y, w0.y),
+            torque.z.mul_add(h.z, w0.z),
+        );
     }
-    *rate_rad_s = mid * splat(2.0) - w0;
+    *rate_rad_s = mid.mul_add(splat(2.0), -w0);
 
-    *attitude = attitude.mul(rotation_increment(mid, dt)).normalize();
+    *attitude = (*attitude * rotation_increment(mid, dt)).normalize();
 }
 
 /// Fixed-point passes of the implicit midpoint rule for the body rates.
@@ -53,8 +63,15 @@ pub fn rotation_increment(w: Vec3, dt: Lane) -> Quat {
     let theta2 = w.length_squared() * half * half;
     let t4 = theta2 * theta2;
     let t6 = t4 * theta2;
-    let cos = splat(1.0) - theta2 / splat(2.0) + t4 / splat(24.0) - t6 / splat(720.0);
-    let sinc = splat(1.0) - theta2 / splat(6.0) + t4 / splat(120.0) - t6 / splat(5040.0);
+    // 1 - theta2 / 2 + t4 / 24 - t6 / 720, term after term, each fused with the sum before.
+    let series = |c2: f64, c4: f64, c6: f64| {
+        t6.mul_neg_add(
+            splat(c6),
+            t4.mul_add(splat(c4), theta2.mul_neg_add(splat(c2), splat(1.0))),
+        )
+    };
+    let cos = series(1.0 / 2.0, 1.0 / 24.0, 1.0 / 720.0);
+    let sinc = series(1.0 / 6.0, 1.0 / 120.0, 1.0 / 5040.0);
     let v = w * (half * sinc);
     Quat {
         x: v.x,

@@ -1,61 +1,90 @@
 //! The step kernel: every leg's contact, then the rigid body, for `LANES` landers at once,
 //! each with its own step length. The reference's `step` module does the same in scalar.
 
-use crate::block::{Block, LegStep};
+use crate::block::{Block, LegStep, SurfaceLanes};
 use crate::contact;
-use crate::lane::{Lane, splat};
-use crate::params::Params;
+use crate::lane::{Lane, all_false, min_into, splat};
+use crate::params::{LegParams, Params};
 use crate::rigid_body;
 use crate::terrain::height_lanes;
 use crate::vec3::Vec3;
 
 /// Penetration below the local surface along the local normal, and that normal.
 #[inline(always)]
-fn penetration(p: &Params, block: &Block, tip: Vec3) -> (Lane, Vec3) {
-    let s = &block.surface;
-    let (h, dh_du, dh_dv) = match &p.terrain {
-        None => (splat(0.0), splat(0.0), splat(0.0)),
-        Some(t) => height_lanes(
-            t,
-            &s.tile,
-            s.tangent_u.dot(tip) + s.offset_u_m,
-            s.tangent_v.dot(tip) + s.offset_v_m,
-        ),
-    };
-    let m = s.normal - s.tangent_u * dh_du - s.tangent_v * dh_dv;
-    let inv = splat(1.0) / m.length();
-    ((h - s.normal.dot(tip)) * inv, m * inv)
+fn penetration(p: &Params, s: &SurfaceLanes, tip: Vec3) -> (Lane, Vec3) {
+    match &p.terrain {
+        // The plane itself: no height, and its normal is already a unit vector.
+        None => (-s.normal.dot(tip), s.normal),
+        Some(t) => {
+            let (h, dh_du, dh_dv) = height_lanes(
+                t,
+                &s.tile,
+                s.tangent_u.dot(tip) + s.offset_u_m,
+                s.tangent_v.dot(tip) + s.offset_v_m,
+            );
+            let m = s.normal - s.tangent_u * dh_du - s.tangent_v * dh_dv;
+            let inv = splat(1.0) / m.length();
+            ((h - s.normal.dot(tip)) * inv, m * inv)
+        }
+    }
+}
+
+/// Footpad position in B: `tip_m - s strut_axis` at stroke `s`. Without dampers the stroke
+/// stays 0 and the footpad where the parameters put it.
+#[inline(always)]
+fn tip_in_body(p: &Params, leg: &LegParams, stroke_m: Lane) -> Vec3 {
+    if p.honeycomb.is_some() {
+        leg.tip_m - leg.strut_axis * stroke_m
+    } else {
+        leg.tip_m
+    }
 }
 
 /// Advances every lane of `block` by its `dt` (0 for lanes that must not move).
 #[inline(never)]
 pub fn step(p: &Params, block: &mut Block, dt: Lane) {
-    let rotation = block.attitude.to_mat3();
+    let zero = splat(0.0);
+    let rotation = block.rotation;
     let rate_i = rotation.mul_vec3(block.rate_rad_s);
     let mut force_n = Vec3::ZERO;
-    let mut moment_n_m = Vec3::ZERO;
-    for k in 0..p.legs.len() {
-        let leg = &p.legs[k];
-        let tip_b = leg.tip_m - leg.strut_axis * block.legs[k].stroke_m;
+    // Moments about the CG, summed in I and turned into B once: (R a) x (R b) = R (a x b).
+    let mut moment_i = Vec3::ZERO;
+    let legs = p.legs.iter().zip(&mut block.legs).zip(&mut block.leg_step);
+    for ((leg, leg_state), out) in legs {
+        let tip_b = tip_in_body(p, leg, leg_state.stroke_m);
         let arm = rotation.mul_vec3(tip_b);
         let tip = block.position_m + arm;
         let tip_velocity = block.velocity_m_s + rate_i.cross(arm);
-        let (penetration, normal) = penetration(p, block, tip);
-        let contact = penetration.simd_gt(splat(0.0));
-        let (f, normal_n, friction_n) = contact::leg_force(
-            p,
-            dt,
-            contact,
-            penetration,
-            normal,
-            tip,
-            tip_velocity,
-            -rotation.mul_vec3(leg.strut_axis),
-            &mut block.legs[k],
-        );
-        force_n += f;
-        moment_n_m += tip_b.cross(rotation.transpose_mul_vec3(f));
-        block.leg_step[k] = LegStep {
+        let (penetration, normal) = penetration(p, &block.surface, tip);
+        let contact = penetration.simd_gt(zero);
+        // As the reference's `if penetration > 0`, for the whole block at once: a leg that
+        // no lander (holding a sample) has on the surface adds nothing and forgets its
+        // anchor.
+        let (normal_n, friction_n) = if (contact & block.active).to_bitmask() == 0 {
+            leg_state.anchored = all_false();
+            (zero, zero)
+        } else {
+            // The strut direction matters to the dampers only.
+            let strut_up = match p.honeycomb {
+                Some(_) => -rotation.mul_vec3(leg.strut_axis),
+                None => Vec3::ZERO,
+            };
+            let (f, normal_n, friction_n) = contact::leg_force(
+                p,
+                dt,
+                contact,
+                penetration,
+                normal,
+                tip,
+                tip_velocity,
+                strut_up,
+                leg_state,
+            );
+            force_n += f;
+            moment_i += arm.cross(f);
+            (normal_n, friction_n)
+        };
+        *out = LegStep {
             tip_m: tip,
             tip_velocity_m_s: tip_velocity,
             penetration_m: penetration,
@@ -63,11 +92,12 @@ pub fn step(p: &Params, block: &mut Block, dt: Lane) {
             friction_n,
         };
     }
+    let moment_n_m = rotation.transpose_mul_vec3(moment_i);
     block.start_t_s = block.t_s;
     block.dt_s = dt;
     block.start_position_m = block.position_m;
     block.start_velocity_m_s = block.velocity_m_s;
-    block.start_attitude = block.attitude;
+    block.start_z_body = rotation.z_axis;
     block.start_rate_rad_s = block.rate_rad_s;
     block.force_n = force_n;
     block.moment_n_m = moment_n_m;
@@ -76,13 +106,15 @@ pub fn step(p: &Params, block: &mut Block, dt: Lane) {
         &mut block.velocity_m_s,
         &mut block.attitude,
         &mut block.rate_rad_s,
-        p.mass_kg,
+        p.inverse_mass_per_kg,
         p.inertia_kg_m2,
+        p.inverse_inertia,
         p.gravity_m_s2,
         force_n,
         moment_n_m,
         dt,
     );
+    block.rotation = block.attitude.to_mat3();
     block.t_s += dt;
 }
 
@@ -94,19 +126,27 @@ pub fn step_size(p: &Params, block: &Block) -> Lane {
     let remaining = p.t_max_s - block.t_s;
     let mut dt = p.step_s;
     if p.long_flight_steps {
-        let rotation = block.attitude.to_mat3();
         let top = splat(p.terrain.as_ref().map_or(0.0, |t| t.height_max_m()));
+        let normal = block.surface.normal;
+        let normal_b = block.rotation.transpose_mul_vec3(normal);
+        let height = normal.dot(block.position_m) - top;
         let mut clearance = splat(f64::INFINITY);
         for (leg, state) in p.legs.iter().zip(&block.legs) {
-            let tip =
-                block.position_m + rotation.mul_vec3(leg.tip_m - leg.strut_axis * state.stroke_m);
-            clearance = clearance.min(block.surface.normal.dot(tip) - top);
+            let tip_b = tip_in_body(p, leg, state.stroke_m);
+            clearance = min_into(clearance, height + normal_b.dot(tip_b));
         }
-        let speed = block.velocity_m_s.length() + block.rate_rad_s.length() * p.leg_reach_m;
-        let reach = splat(2.0) * clearance
-            / (speed + (speed * speed + splat(2.0) * p.gravity_m_s2 * clearance).sqrt());
-        let free = (splat(0.5) * reach).max(p.step_s).min(p.flight_step_max_s);
-        dt = clearance.simd_gt(splat(0.0)).select(free, dt);
+        // As the reference's `if clearance > 0`: only lanes in free flight need the rest.
+        let flying = clearance.simd_gt(splat(0.0));
+        if (flying & block.active).to_bitmask() != 0 {
+            let speed = block.velocity_m_s.length() + block.rate_rad_s.length() * p.leg_reach_m;
+            let reach = splat(2.0) * clearance
+                / (speed + (speed * speed + splat(2.0) * p.gravity_m_s2 * clearance).sqrt());
+            // (The bounds are never NaN: `fast_` versions give the same.)
+            let free = (splat(0.5) * reach)
+                .fast_max(p.step_s)
+                .fast_min(p.flight_step_max_s);
+            dt = flying.select(free, dt);
+        }
     }
     block.active.select(dt.min(remaining), splat(0.0))
 }

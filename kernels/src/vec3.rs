@@ -44,14 +44,43 @@ impl Vec3 {
         self.x.mul_add(o.x, self.y.mul_add(o.y, self.z * o.z))
     }
 
+    /// Dot product of the projections on the XY plane, per lane.
+    #[inline(always)]
+    #[must_use]
+    pub fn dot_xy(self, o: Vec3) -> Lane {
+        self.x.mul_add(o.x, self.y * o.y)
+    }
+
     /// Cross product per lane.
     #[inline(always)]
     #[must_use]
     pub fn cross(self, o: Vec3) -> Vec3 {
         Vec3::new(
-            self.y * o.z - self.z * o.y,
-            self.z * o.x - self.x * o.z,
-            self.x * o.y - self.y * o.x,
+            self.y.mul_sub(o.z, self.z * o.y),
+            self.z.mul_sub(o.x, self.x * o.z),
+            self.x.mul_sub(o.y, self.y * o.x),
+        )
+    }
+
+    /// `self * s + c` per lane, each component one fused multiply-add.
+    #[inline(always)]
+    #[must_use]
+    pub fn mul_add(self, s: Lane, c: Vec3) -> Vec3 {
+        Vec3::new(
+            self.x.mul_add(s, c.x),
+            self.y.mul_add(s, c.y),
+            self.z.mul_add(s, c.z),
+        )
+    }
+
+    /// `c - self * s` per lane, each component one fused multiply-add.
+    #[inline(always)]
+    #[must_use]
+    pub fn mul_neg_add(self, s: Lane, c: Vec3) -> Vec3 {
+        Vec3::new(
+            self.x.mul_neg_add(s, c.x),
+            self.y.mul_neg_add(s, c.y),
+            self.z.mul_neg_add(s, c.z),
         )
     }
 
@@ -155,7 +184,12 @@ impl Mat3 {
     #[inline(always)]
     #[must_use]
     pub fn mul_vec3(&self, v: Vec3) -> Vec3 {
-        self.x_axis * v.x + self.y_axis * v.y + self.z_axis * v.z
+        let (a, b, c) = (self.x_axis, self.y_axis, self.z_axis);
+        Vec3::new(
+            c.x.mul_add(v.z, b.x.mul_add(v.y, a.x * v.x)),
+            c.y.mul_add(v.z, b.y.mul_add(v.y, a.y * v.x)),
+            c.z.mul_add(v.z, b.z.mul_add(v.y, a.z * v.x)),
+        )
     }
 
     /// `M^T v`.
@@ -180,24 +214,16 @@ pub struct Quat {
 }
 
 impl Quat {
-    /// Hamilton product `self * o`.
-    #[inline(always)]
-    #[must_use]
-    pub fn mul(self, o: Quat) -> Quat {
-        Quat {
-            w: self.w * o.w - self.x * o.x - self.y * o.y - self.z * o.z,
-            x: self.w * o.x + self.x * o.w + self.y * o.z - self.z * o.y,
-            y: self.w * o.y - self.x * o.z + self.y * o.w + self.z * o.x,
-            z: self.w * o.z + self.x * o.y - self.y * o.x + self.z * o.w,
-        }
-    }
-
     /// Renormalised to unit length.
     #[inline(always)]
     #[must_use]
     pub fn normalize(self) -> Quat {
-        let inv = splat(1.0)
-            / (self.x * self.x + self.y * self.y + self.z * self.z + self.w * self.w).sqrt();
+        let length_squared = self.w.mul_add(
+            self.w,
+            self.z
+                .mul_add(self.z, self.y.mul_add(self.y, self.x * self.x)),
+        );
+        let inv = splat(1.0) / length_squared.sqrt();
         Quat {
             x: self.x * inv,
             y: self.y * inv,
@@ -242,5 +268,25 @@ impl Quat {
         self.y.as_mut_array()[i] = q[1];
         self.z.as_mut_array()[i] = q[2];
         self.w.as_mut_array()[i] = q[3];
+    }
+}
+
+impl Mul for Quat {
+    type Output = Quat;
+    /// Hamilton product `self * o`.
+    #[inline(always)]
+    fn mul(self, o: Quat) -> Quat {
+        // Term after term as written, each product fused with the sum before it.
+        let (a, b) = (self, o);
+        Quat {
+            w: b.z
+                .mul_neg_add(a.z, b.y.mul_neg_add(a.y, b.x.mul_neg_add(a.x, a.w * b.w))),
+            x: b.y
+                .mul_neg_add(a.z, a.y.mul_add(b.z, a.x.mul_add(b.w, a.w * b.x))),
+            y: a.z
+                .mul_add(b.x, a.y.mul_add(b.w, b.z.mul_neg_add(a.x, a.w * b.y))),
+            z: a.z
+                .mul_add(b.w, b.x.mul_neg_add(a.y, a.x.mul_add(b.y, a.w * b.z))),
+        }
     }
 }

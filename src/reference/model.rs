@@ -251,7 +251,11 @@ impl Surface {
     #[inline]
     #[must_use]
     pub fn penetration(&self, terrain: Option<&Terrain>, p: DVec3) -> (f64, DVec3) {
-        let (h, dh_du, dh_dv) = self.height(terrain, p);
+        let Some(terrain) = terrain else {
+            // The plane itself: no height, and its normal is already a unit vector.
+            return (-self.normal.dot(p), self.normal);
+        };
+        let (h, dh_du, dh_dv) = self.height(Some(terrain), p);
         let m = self.normal - self.tangent_u * dh_du - self.tangent_v * dh_dv;
         let inv = 1.0 / m.length();
         ((h - self.normal.dot(p)) * inv, m * inv)

@@ -158,8 +158,8 @@ impl Tracker {
             && b.rate_rad_s.is_finite()
             && b.attitude.is_finite();
         if !finite
-            || b.velocity_m_s.length() > th.diverged_speed_m_s
-            || b.rate_rad_s.length() > th.diverged_rate_rad_s
+            || b.velocity_m_s.length_squared() > th.diverged_speed_m_s.powi(2)
+            || b.rate_rad_s.length_squared() > th.diverged_rate_rad_s.powi(2)
             || deepest > th.diverged_penetration_m
         {
             return Some(Outcome::Diverged);
@@ -189,8 +189,8 @@ impl Tracker {
             return Some(Outcome::Tipped);
         }
 
-        let at_rest = body.velocity_m_s.length() < th.rest_speed_m_s
-            && body.rate_rad_s.length() < th.rest_rate_rad_s
+        let at_rest = body.velocity_m_s.length_squared() < th.rest_speed_m_s.powi(2)
+            && body.rate_rad_s.length_squared() < th.rest_rate_rad_s.powi(2)
             && contacts >= model.legs.len().min(3)
             && inside;
         self.rest_s = if at_rest {

@@ -65,8 +65,11 @@ pub const MIDPOINT_PASSES: usize = 3;
 pub fn rotation_increment(w: DVec3, dt: f64) -> DQuat {
     let half = 0.5 * dt;
     let theta2 = w.length_squared() * half * half;
-    let cos = 1.0 - theta2 / 2.0 + theta2 * theta2 / 24.0 - theta2 * theta2 * theta2 / 720.0;
-    let sinc = 1.0 - theta2 / 6.0 + theta2 * theta2 / 120.0 - theta2 * theta2 * theta2 / 5040.0;
+    // 1/k! as constants: multiplications, not divisions, in the step.
+    let cos = 1.0 - theta2 * (1.0 / 2.0) + theta2 * theta2 * (1.0 / 24.0)
+        - theta2 * theta2 * theta2 * (1.0 / 720.0);
+    let sinc = 1.0 - theta2 * (1.0 / 6.0) + theta2 * theta2 * (1.0 / 120.0)
+        - theta2 * theta2 * theta2 * (1.0 / 5040.0);
     let v = w * (half * sinc);
     DQuat::from_xyzw(v.x, v.y, v.z, cos)
 }

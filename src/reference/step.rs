@@ -80,7 +80,8 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
     let rotation = DMat3::from_quat(body.attitude);
     let rate_i = rotation * body.rate_rad_s;
     let mut force_n = DVec3::ZERO;
-    let mut moment_n_m = DVec3::ZERO;
+    // Moments about the CG, summed in I and turned into B once: (R a) x (R b) = R (a x b).
+    let mut moment_i = DVec3::ZERO;
     for ((leg, leg_state), out) in model.legs.iter().zip(&mut state.legs).zip(&mut report.legs) {
         let tip_b = leg.tip_m - leg.strut_axis * leg_state.stroke_m;
         let arm = rotation * tip_b;
@@ -108,7 +109,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
             }
         };
         force_n += f.force_n;
-        moment_n_m += tip_b.cross(rotation.transpose() * f.force_n);
+        moment_i += arm.cross(f.force_n);
         *out = LegReport {
             tip_m: tip,
             tip_velocity_m_s: tip_velocity,
@@ -118,6 +119,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
             stroke_m: leg_state.stroke_m,
         };
     }
+    let moment_n_m = rotation.transpose() * moment_i;
     report.t_s = state.t_s;
     report.dt_s = dt;
     report.body = body;
@@ -147,14 +149,15 @@ pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
         let body = &state.body;
         let rotation = DMat3::from_quat(body.attitude);
         let top = model.terrain.as_ref().map_or(0.0, |t| t.height_max_m());
+        // Height of a footpad above `top`: that of the CG, plus the footpad's offset from
+        // the CG along the normal (taken in B, where the footpads are).
+        let normal_b = rotation.transpose() * surface.normal;
+        let height = surface.normal.dot(body.position_m) - top;
         let clearance = model
             .legs
             .iter()
             .zip(&state.legs)
-            .map(|(leg, ls)| {
-                let tip = body.position_m + rotation * (leg.tip_m - leg.strut_axis * ls.stroke_m);
-                surface.normal.dot(tip) - top
-            })
+            .map(|(leg, ls)| height + normal_b.dot(leg.tip_m - leg.strut_axis * ls.stroke_m))
             .fold(f64::INFINITY, f64::min);
         if clearance > 0.0 {
             let speed = body.velocity_m_s.length() + body.rate_rad_s.length() * model.leg_reach_m();
