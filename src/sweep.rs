@@ -58,7 +58,6 @@ pub fn kernel_params(m: &Model) -> Params {
     let v = |d: DVec3| Vec3::splat(d.to_array());
     Params {
         gravity_m_s2: lane(m.gravity_m_s2),
-        mass_kg: lane(m.mass_kg),
         inverse_mass_per_kg: lane(1.0 / m.mass_kg),
         inertia_kg_m2: v(m.inertia_kg_m2),
         inverse_inertia: v(m.inertia_kg_m2.recip()),

@@ -25,7 +25,6 @@ pub struct LegStep {
     pub tip_velocity_m_s: Vec3,
     pub penetration_m: Lane,
     pub normal_n: Lane,
-    pub friction_n: Lane,
 }
 
 /// The surface of each lane.
@@ -126,7 +125,6 @@ impl Block {
             tip_velocity_m_s: Vec3::ZERO,
             penetration_m: zero,
             normal_n: zero,
-            friction_n: zero,
         };
         let identity = Quat {
             x: zero,

@@ -7,8 +7,9 @@ use crate::lane::{Lane, splat};
 use crate::params::Params;
 use crate::vec3::Vec3;
 
-/// The force of one leg on every lane (zero where `contact` is false), with its normal and
-/// friction magnitudes. Updates the friction anchor and the damper of the leg.
+/// The force of one leg on every lane (zero where `contact` is false), with its normal
+/// magnitude. Updates the friction anchor and the damper of the leg. (The reference also
+/// returns the friction magnitude, for the trace; nothing in a sweep reads it.)
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn leg_force(
@@ -21,7 +22,7 @@ pub fn leg_force(
     tip_velocity: Vec3,
     strut_up: Vec3,
     leg: &mut LegLanes,
-) -> (Vec3, Lane, Lane) {
+) -> (Vec3, Lane) {
     let zero = splat(0.0);
     let normal_velocity = normal.dot(tip_velocity);
     let mut normal_n = p
@@ -68,22 +69,20 @@ pub fn leg_force(
     }
 
     let cap = p.friction_coefficient * normal_n;
-    let magnitude = friction.length();
-    let slips = magnitude.simd_gt(cap) & contact;
-    // Where no lane slips, the friction keeps its length: only slipping lanes need the
-    // division and the new length.
-    let mut friction_n = magnitude;
+    // `|friction| > cap`, compared squared (both sides are >= 0): only slipping lanes need
+    // the root and the division.
+    let magnitude_squared = friction.length_squared();
+    let slips = magnitude_squared.simd_gt(cap * cap) & contact;
     if slips.to_bitmask() != 0 {
-        friction = friction * slips.select(cap / magnitude, splat(1.0));
+        friction = friction * slips.select(cap / magnitude_squared.sqrt(), splat(1.0));
         // Slip: move the anchor so that the spring alone would give the capped force.
         leg.anchor_m = Vec3::select(
             slips,
             friction.mul_add(p.friction_compliance_m_per_n, tip),
             leg.anchor_m,
         );
-        friction_n = friction.length();
     }
     let normal_n = contact.select(normal_n, zero);
     let force = Vec3::select(contact, normal.mul_add(normal_n, friction), Vec3::ZERO);
-    (force, normal_n, contact.select(friction_n, zero))
+    (force, normal_n)
 }

@@ -1,8 +1,9 @@
 //! The one place that names the SIMD type: every kernel is written over `Lane`.
 //!
-//! `f64x8`: eight landers per vector (one AVX-512 register, two AVX2 ones). f64 keeps the kernels within rounding of the f64
-//! reference model (penetrations are micrometres on positions of metres, which f32 cannot
-//! resolve); see the README's performance section for the measured choice.
+//! `f64x8`: eight landers per vector (one AVX-512 register, two AVX2 ones). f64 keeps the
+//! kernels within rounding of the f64 reference model (penetrations are micrometres on
+//! positions of metres, which f32 cannot resolve); see the README's performance section for
+//! the measured choice.
 
 /// Eight f64 lanes.
 pub type Lane = wide::f64x8;

@@ -35,8 +35,7 @@ pub struct HoneycombParams {
 #[allow(missing_docs)]
 pub struct Params {
     pub gravity_m_s2: Lane,
-    pub mass_kg: Lane,
-    /// `1 / mass_kg`.
+    /// `1 / mass`.
     pub inverse_mass_per_kg: Lane,
     pub inertia_kg_m2: Vec3,
     /// `1 / inertia_kg_m2`, per axis.
