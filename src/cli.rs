@@ -6,6 +6,7 @@ use crate::reference::Outcome;
 use crate::reference::{self, Model, Summary};
 use crate::sampling::{self, Sample};
 use crate::scenario::{DEFAULT_TOML, INPUT_FIELDS, Scenario};
+use crate::sweep::Shard;
 use clap::{Parser, Subcommand};
 use std::io::Write;
 use std::path::PathBuf;
@@ -27,6 +28,9 @@ pub enum Command {
     Trace(TraceArgs),
     /// Run a Monte Carlo sweep through the SIMD kernels and write one row per sample.
     Sweep(SweepArgs),
+    /// Join the shard files of one sweep (`sweep --shard K/N`) into the file the sweep
+    /// writes when run in one process.
+    Merge(MergeArgs),
 }
 
 /// Flags of `touchdown sweep`.
@@ -53,6 +57,24 @@ pub struct SweepArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Run only the K-th of N contiguous slices of the samples (K from 0 to N-1, as a Slurm
+    /// array numbers its tasks); `touchdown merge` joins the N files.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<Shard>,
+}
+
+/// Flags of `touchdown merge`.
+#[derive(clap::Args, Debug)]
+pub struct MergeArgs {
+    /// The shard files, in any order (Arrow IPC or Parquet).
+    #[arg(value_name = "SHARD", required = true)]
+    pub shards: Vec<PathBuf>,
+    /// Output file.
+    #[arg(long, value_name = "PATH", default_value = "sweep.arrow")]
+    pub out: PathBuf,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "arrow")]
+    pub format: Format,
 }
 
 /// Flags of `touchdown trace`.
@@ -124,6 +146,16 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Trace(args) => run_trace(&args),
         Command::Sweep(args) => run_sweep(&args),
+        Command::Merge(args) => {
+            let m = crate::output::merge::merge(&args.shards, &args.out, args.format)?;
+            print_out(&format!(
+                "merged {} shards, {} samples\nwrote {}\n",
+                m.shards,
+                m.rows,
+                args.out.display()
+            ));
+            Ok(())
+        }
     }
 }
 
@@ -186,8 +218,16 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         .num_threads(threads)
         .build()?;
     let model = Model::new(&scenario);
+    let range = args.shard.map_or(0..samples, |s| s.range(samples));
+    let shard_note = args.shard.map_or(String::new(), |s| {
+        format!(
+            ", shard {s} (samples {}..{} of {samples})",
+            range.start, range.end
+        )
+    });
     eprintln!(
-        "touchdown sweep: {samples} samples, seed {}, kernel {} {} ({} landers per block), {threads} thread{}",
+        "touchdown sweep: {} samples, seed {}, kernel {} {} ({} landers per block), {threads} thread{}{shard_note}",
+        range.end - range.start,
         scenario.seed,
         kernels::lane::LANE_NAME,
         kernels::lane::INSTRUCTION_SET,
@@ -199,12 +239,13 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         seed: scenario.seed,
         samples,
         lane_type: kernels::lane::LANE_NAME,
+        shard: args.shard,
     };
     let mut writer = SweepWriter::create(&args.out, args.format, model.legs.len(), &info)?;
     let bar = if args.quiet || !std::io::stderr().is_terminal() {
         indicatif::ProgressBar::hidden()
     } else {
-        indicatif::ProgressBar::new(samples).with_style(
+        indicatif::ProgressBar::new(range.end - range.start).with_style(
             indicatif::ProgressStyle::with_template(
                 "{bar:40} {pos}/{len} samples  {per_sec}  ETA {eta}",
             )
@@ -215,7 +256,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     let mut steps = 0u64;
     let start = std::time::Instant::now();
     let stats = pool.install(|| {
-        crate::sweep::run(&scenario, &model, 0..samples, CHUNK, |rows| {
+        crate::sweep::run(&scenario, &model, range.clone(), CHUNK, |rows| {
             for r in &rows {
                 counts[r.summary.outcome as usize] += 1;
                 steps += r.summary.steps;

@@ -49,8 +49,10 @@ fn banner(run: &Run) -> Banner {
     let parse = || -> Option<Banner> {
         let rest = line.strip_prefix("touchdown sweep: ")?;
         let parts: Vec<&str> = rest.split(", ").collect();
-        // ["N samples", "seed S", "kernel K ISA (L landers per block)", "T threads"]
-        if parts.len() != 4 || !parts[2].starts_with("kernel ") {
+        // ["N samples", "seed S", "kernel K ISA (L landers per block)", "T threads"], and
+        // "shard K/N (samples A..B of M)" after them for a shard.
+        let shard_note = parts.len() == 5 && parts[4].starts_with("shard ");
+        if !(parts.len() == 4 || shard_note) || !parts[2].starts_with("kernel ") {
             return None;
         }
         Some(Banner {
@@ -847,6 +849,21 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
         &["--format", "'csv'", "arrow", "parquet"],
     ),
     bad_args("negative seed", &["--seed", "-1"], &["--seed", "'-1'"]),
+    bad_args(
+        "shard index past the count",
+        &["--shard", "4/4"],
+        &["--shard", "\"4/4\"", "K from 0 to N-1"],
+    ),
+    bad_args(
+        "zero shards",
+        &["--shard", "0/0"],
+        &["--shard", "\"0/0\"", "K from 0 to N-1"],
+    ),
+    bad_args(
+        "shard not K/N",
+        &["--shard", "2"],
+        &["--shard", "\"2\"", "K from 0 to N-1"],
+    ),
     bad_args(
         "seed beyond what a scenario file can hold",
         &["--seed", "9223372036854775808"],

@@ -3,5 +3,6 @@
 mod agreement;
 mod cli;
 mod common;
+mod shards;
 mod sweep_cli;
 mod validation;

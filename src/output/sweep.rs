@@ -4,7 +4,7 @@
 
 use super::{AtomicFile, ENGINE, field};
 use crate::scenario::INPUT_FIELDS;
-use crate::sweep::Row;
+use crate::sweep::{Row, Shard};
 use arrow_array::builder::{Float64Builder, StringBuilder, UInt32Builder, UInt64Builder};
 use arrow_array::{ArrayRef, RecordBatch};
 use arrow_ipc::writer::FileWriter;
@@ -32,9 +32,15 @@ pub enum Format {
 pub struct SweepInfo<'a> {
     pub scenario_toml: &'a str,
     pub seed: u64,
+    /// Samples of the whole sweep (of all its shards).
     pub samples: u64,
     pub lane_type: &'a str,
+    /// The slice of the sweep this file holds, if it is a shard.
+    pub shard: Option<Shard>,
 }
+
+/// Schema metadata keys of a shard file (a whole sweep has neither).
+pub const SHARD_KEYS: [&str; 2] = ["touchdown.shard", "touchdown.sample_range"];
 
 /// The schema of a sweep of a lander with `legs` legs.
 #[must_use]
@@ -158,7 +164,7 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
             "energy absorbed by the damper",
         ));
     }
-    let meta = BTreeMap::from([
+    let mut meta = BTreeMap::from([
         ("touchdown.engine".to_string(), ENGINE.to_string()),
         ("touchdown.kind".to_string(), "sweep".to_string()),
         (
@@ -172,6 +178,14 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
             info.lane_type.to_string(),
         ),
     ]);
+    if let Some(shard) = info.shard {
+        let range = shard.range(info.samples);
+        meta.insert(SHARD_KEYS[0].to_string(), shard.to_string());
+        meta.insert(
+            SHARD_KEYS[1].to_string(),
+            format!("{}..{}", range.start, range.end),
+        );
+    }
     Arc::new(Schema::new_with_metadata(fields, meta))
 }
 
@@ -288,12 +302,25 @@ impl SweepWriter {
             return Ok(());
         }
         let b = batch(&self.schema, self.legs, &self.pending)?;
-        match &mut self.sink {
-            Sink::Arrow(w) => w.write(&b)?,
-            Sink::Parquet(w) => w.write(&b)?,
-        }
-        self.rows += self.pending.len() as u64;
         self.pending.clear();
+        self.write_batch(&b)
+    }
+
+    /// The schema every batch is written in.
+    #[must_use]
+    pub fn schema(&self) -> &SchemaRef {
+        &self.schema
+    }
+
+    /// Writes a whole batch as it is (for `merge`, which cuts its batches itself). Not to
+    /// be mixed with `push`.
+    pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
+        debug_assert!(self.pending.is_empty(), "write_batch after push");
+        match &mut self.sink {
+            Sink::Arrow(w) => w.write(b)?,
+            Sink::Parquet(w) => w.write(b)?,
+        }
+        self.rows += b.num_rows() as u64;
         Ok(())
     }
 

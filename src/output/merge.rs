@@ -1,0 +1,350 @@
+//! `touchdown merge`: the shard files of one sweep joined into the file that the sweep
+//! writes when it runs in one process: the same schema and metadata, the rows in sample
+//! order, cut into the same batches. Shards that do not belong together are refused before
+//! anything is written.
+
+use super::sweep::{BATCH_ROWS, Format, SHARD_KEYS, SweepInfo, SweepWriter, schema};
+use crate::sweep::Shard;
+use anyhow::{anyhow, bail};
+use arrow_array::{Array, RecordBatch, UInt64Array};
+use arrow_schema::SchemaRef;
+use arrow_select::concat::concat_batches;
+use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::{BufReader, Read};
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+/// Schema metadata that every shard of one sweep shares, with what a message calls it.
+const SHARED_KEYS: [(&str, &str); 6] = [
+    ("touchdown.kind", "kind of file"),
+    ("touchdown.engine", "engine version"),
+    ("touchdown.lane_type", "kernel lane type"),
+    ("touchdown.seed", "seed"),
+    ("touchdown.samples", "sample count"),
+    ("touchdown.scenario", "scenario"),
+];
+
+/// A shard file, as its schema describes it.
+struct ShardFile {
+    path: PathBuf,
+    format: Format,
+    schema: SchemaRef,
+    shard: Shard,
+    range: Range<u64>,
+}
+
+/// What `merge` did.
+pub struct Merged {
+    pub shards: usize,
+    pub rows: u64,
+}
+
+/// Joins `shards` (in any order) into `out`, written as `format`.
+pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<Merged> {
+    super::check_output_path(out)?;
+    let files = shards
+        .iter()
+        .map(|p| open_shard(p))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let first = &files[0];
+    for f in &files[1..] {
+        check_same_sweep(first, f)?;
+    }
+    let files = in_shard_order(files)?;
+    for f in &files {
+        if same_file(&f.path, out) {
+            bail!("the output {} is one of the shards", out.display());
+        }
+    }
+
+    let meta = files[0].schema.metadata();
+    let text = |key: &str| meta.get(key).map_or("", String::as_str);
+    let info = SweepInfo {
+        scenario_toml: text("touchdown.scenario"),
+        seed: number(&files[0], "touchdown.seed")?,
+        samples: number(&files[0], "touchdown.samples")?,
+        lane_type: text("touchdown.lane_type"),
+        shard: None,
+    };
+    let legs = files[0]
+        .schema
+        .fields()
+        .iter()
+        .filter(|f| f.name().starts_with("leg") && f.name().ends_with("_peak_normal_force_n"))
+        .count();
+    let whole = schema(legs, &info);
+    for f in &files {
+        if f.schema.fields() != whole.fields() {
+            bail!(
+                "{} does not hold the columns of a sweep of this engine (another version?)",
+                f.path.display()
+            );
+        }
+    }
+
+    let mut writer = SweepWriter::create(out, format, legs, &info)?;
+    let mut batches = Rebatcher::new(whole);
+    for f in &files {
+        copy_rows(f, &mut batches, &mut writer)?;
+    }
+    batches.finish(&mut writer)?;
+    let rows = writer.finish()?;
+    Ok(Merged {
+        shards: files.len(),
+        rows,
+    })
+}
+
+/// The schema of a shard file, checked to be one.
+fn open_shard(path: &Path) -> anyhow::Result<ShardFile> {
+    let format = format_of(path)?;
+    let (schema, _) = open(path, format)?;
+    let meta = schema.metadata().clone();
+    let Some(kind) = meta.get("touchdown.kind") else {
+        bail!(
+            "{} is not a file of touchdown (no touchdown.kind in its schema metadata)",
+            path.display()
+        );
+    };
+    if kind != "sweep" {
+        bail!("{} is a {kind} file, not a sweep shard", path.display());
+    }
+    let Some(shard) = meta.get(SHARD_KEYS[0]) else {
+        bail!(
+            "{} is a whole sweep, not a shard: it was not written with --shard",
+            path.display()
+        );
+    };
+    let shard: Shard = shard
+        .parse()
+        .map_err(|e| anyhow!("{}: bad {}: {e}", path.display(), SHARD_KEYS[0]))?;
+    let mut file = ShardFile {
+        path: path.to_path_buf(),
+        format,
+        schema,
+        shard,
+        range: 0..0,
+    };
+    file.range = shard.range(number(&file, "touchdown.samples")?);
+    let stated = meta.get(SHARD_KEYS[1]).map_or("", String::as_str);
+    if stated != format!("{}..{}", file.range.start, file.range.end) {
+        bail!(
+            "{}: shard {shard} of {} samples covers {:?}, but the file says {}",
+            path.display(),
+            number(&file, "touchdown.samples")?,
+            file.range,
+            stated
+        );
+    }
+    Ok(file)
+}
+
+/// A whole number from the schema metadata of `f`.
+fn number(f: &ShardFile, key: &str) -> anyhow::Result<u64> {
+    let value = f.schema.metadata().get(key).map_or("", String::as_str);
+    value.parse().map_err(|_| {
+        anyhow!(
+            "{}: {key} = {value:?} in its schema metadata is not a whole number",
+            f.path.display()
+        )
+    })
+}
+
+/// Refuses `b` unless it is a shard of the same sweep as `a`.
+fn check_same_sweep(a: &ShardFile, b: &ShardFile) -> anyhow::Result<()> {
+    let (ma, mb) = (a.schema.metadata(), b.schema.metadata());
+    for (key, what) in SHARED_KEYS {
+        let (x, y) = (ma.get(key), mb.get(key));
+        if x != y {
+            let shown = |v: Option<&String>| match v {
+                Some(v) if v.len() <= 40 && !v.contains('\n') => format!("{v:?}"),
+                Some(_) => "another".to_string(),
+                None => "none".to_string(),
+            };
+            bail!(
+                "{} and {} are not shards of one sweep: their {what} differs ({} against {})",
+                a.path.display(),
+                b.path.display(),
+                shown(x),
+                shown(y)
+            );
+        }
+    }
+    if a.shard.count != b.shard.count {
+        bail!(
+            "{} and {} are not shards of one sweep: shard {} against shard {} (different shard counts)",
+            a.path.display(),
+            b.path.display(),
+            a.shard,
+            b.shard
+        );
+    }
+    Ok(())
+}
+
+/// The shards sorted by index, each exactly once and none missing.
+fn in_shard_order(files: Vec<ShardFile>) -> anyhow::Result<Vec<ShardFile>> {
+    let count = files[0].shard.count;
+    let mut by_index: BTreeMap<u64, ShardFile> = BTreeMap::new();
+    for f in files {
+        if let Some(other) = by_index.get(&f.shard.index) {
+            bail!(
+                "shard {} is given twice: {} and {}",
+                f.shard,
+                other.path.display(),
+                f.path.display()
+            );
+        }
+        by_index.insert(f.shard.index, f);
+    }
+    let missing: Vec<String> = (0..count)
+        .filter(|k| !by_index.contains_key(k))
+        .map(|index| Shard { index, count }.to_string())
+        .collect();
+    if !missing.is_empty() {
+        bail!(
+            "the sweep has {count} shards; missing: {}",
+            missing.join(", ")
+        );
+    }
+    Ok(by_index.into_values().collect())
+}
+
+/// Copies the rows of `f` into `batches`, checking that they are its samples, in order.
+fn copy_rows(
+    f: &ShardFile,
+    batches: &mut Rebatcher,
+    writer: &mut SweepWriter,
+) -> anyhow::Result<()> {
+    let mut next = f.range.start;
+    for b in open(&f.path, f.format)?.1 {
+        let b = b.map_err(|e| anyhow!("cannot read {}: {e}", f.path.display()))?;
+        let samples = b
+            .column(0)
+            .as_any()
+            .downcast_ref::<UInt64Array>()
+            .ok_or_else(|| anyhow!("{}: the sample column is not u64", f.path.display()))?;
+        for s in samples.values() {
+            if *s != next || next >= f.range.end {
+                bail!(
+                    "{}: holds sample {s} where shard {} has sample {next} of {:?}",
+                    f.path.display(),
+                    f.shard,
+                    f.range
+                );
+            }
+            next += 1;
+        }
+        batches.push(b, writer)?;
+    }
+    if next != f.range.end {
+        bail!(
+            "{} ends at sample {next}, but shard {} runs to {}: the file is incomplete",
+            f.path.display(),
+            f.shard,
+            f.range.end
+        );
+    }
+    Ok(())
+}
+
+/// Cuts a stream of batches into batches of `BATCH_ROWS` rows (the last one shorter), as
+/// the sweep writes them, holding at most one batch's rows.
+struct Rebatcher {
+    schema: SchemaRef,
+    pieces: Vec<RecordBatch>,
+    rows: usize,
+}
+
+impl Rebatcher {
+    fn new(schema: SchemaRef) -> Rebatcher {
+        Rebatcher {
+            schema,
+            pieces: Vec::new(),
+            rows: 0,
+        }
+    }
+
+    fn push(&mut self, b: RecordBatch, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        // The same columns, under the schema of the whole sweep (no shard metadata).
+        let mut b = RecordBatch::try_new(self.schema.clone(), b.columns().to_vec())?;
+        while self.rows + b.num_rows() >= BATCH_ROWS {
+            let take = BATCH_ROWS - self.rows;
+            self.pieces.push(b.slice(0, take));
+            b = b.slice(take, b.num_rows() - take);
+            self.rows = 0;
+            self.write(writer)?;
+        }
+        if b.num_rows() > 0 {
+            self.rows += b.num_rows();
+            self.pieces.push(b);
+        }
+        Ok(())
+    }
+
+    fn finish(mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        if self.pieces.is_empty() {
+            return Ok(());
+        }
+        self.write(writer)
+    }
+
+    /// Writes the pieces as one batch of fresh (unsliced) arrays.
+    fn write(&mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        let whole = concat_batches(&self.schema, &self.pieces)?;
+        self.pieces.clear();
+        writer.write_batch(&whole)
+    }
+}
+
+/// The format of a file, from its first bytes.
+fn format_of(path: &Path) -> anyhow::Result<Format> {
+    let mut head = [0u8; 6];
+    let n = File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .map_err(|e| anyhow!("cannot read shard {}: {e}", path.display()))?;
+    match &head[..n] {
+        [b'A', b'R', b'R', b'O', b'W', b'1'] => Ok(Format::Arrow),
+        [b'P', b'A', b'R', b'1', ..] => Ok(Format::Parquet),
+        _ => bail!(
+            "{} is neither an Arrow IPC file nor a Parquet file",
+            path.display()
+        ),
+    }
+}
+
+/// The batches of a file, and its schema with the metadata it was written with.
+fn open(path: &Path, format: Format) -> anyhow::Result<(SchemaRef, Batches)> {
+    let context = |e: &dyn std::fmt::Display| anyhow!("cannot read {}: {e}", path.display());
+    let file = File::open(path).map_err(|e| context(&e))?;
+    Ok(match format {
+        Format::Arrow => {
+            let r = arrow_ipc::reader::FileReader::try_new(BufReader::new(file), None)
+                .map_err(|e| context(&e))?;
+            (r.schema(), Box::new(r))
+        }
+        Format::Parquet => {
+            // The reader's own batches carry no schema metadata: take the builder's schema.
+            let b = ParquetRecordBatchReaderBuilder::try_new(file).map_err(|e| context(&e))?;
+            let schema = b.schema().clone();
+            let r = b
+                .with_batch_size(BATCH_ROWS)
+                .build()
+                .map_err(|e| context(&e))?;
+            (schema, Box::new(r))
+        }
+    })
+}
+
+/// Record batches as a reader yields them.
+type Batches = Box<dyn Iterator<Item = Result<RecordBatch, arrow_schema::ArrowError>>>;
+
+/// Whether `a` and `b` name the same existing file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
+}
