@@ -57,6 +57,15 @@ pub struct SweepArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Continue the sweep that was interrupted while writing PATH (its `--out`), with the
+    /// scenario, seed, samples, shard and format it was started with; the finished file is
+    /// the one an uninterrupted sweep writes.
+    #[arg(
+        long,
+        value_name = "PATH",
+        conflicts_with_all = ["scenario", "samples", "seed", "out", "format", "shard"]
+    )]
+    pub resume: Option<PathBuf>,
     /// Run only the K-th of N contiguous slices of the samples (K from 0 to N-1, as a Slurm
     /// array numbers its tasks); `touchdown merge` joins the N files.
     #[arg(long, value_name = "K/N")]
@@ -203,30 +212,125 @@ fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
 /// Samples per task of the sweep's workers.
 const CHUNK: u64 = 1024;
 
+/// A sweep stopped by a signal; its rows so far are in a valid file beside the output.
+#[derive(Debug)]
+pub struct Interrupted {
+    /// The exit code: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
+    pub code: u8,
+    pub message: String,
+}
+
+impl std::fmt::Display for Interrupted {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Interrupted {}
+
+/// What a sweep runs: its settings, and where it starts when it resumes.
+struct SweepPlan {
+    scenario: Scenario,
+    text: String,
+    samples: u64,
+    shard: Option<Shard>,
+    format: crate::output::sweep::Format,
+    out: PathBuf,
+    /// The interrupted sweep whose first rows this one takes over.
+    resume: Option<crate::output::resume::Interrupted>,
+}
+
+impl SweepPlan {
+    fn new(args: &SweepArgs) -> anyhow::Result<SweepPlan> {
+        if let Some(out) = &args.resume {
+            let from = crate::output::resume::Interrupted::read(out)?;
+            if from.lane_type != kernels::lane::LANE_NAME {
+                anyhow::bail!(
+                    "{} was computed with {} kernels, this build has {}: run the sweep again",
+                    from.path.display(),
+                    from.lane_type,
+                    kernels::lane::LANE_NAME
+                );
+            }
+            let mut scenario = Scenario::from_toml(&from.scenario_toml)
+                .map_err(|e| anyhow::anyhow!("the scenario of {}: {e}", from.path.display()))?;
+            scenario.seed = from.seed;
+            crate::output::check_output_path(out)?;
+            return Ok(SweepPlan {
+                scenario,
+                text: from.scenario_toml.clone(),
+                samples: from.samples,
+                shard: from.shard,
+                format: from.format,
+                out: out.clone(),
+                resume: Some(from),
+            });
+        }
+        crate::output::check_output_path(&args.out)?;
+        let (scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+        let samples = args.samples.unwrap_or(scenario.samples);
+        if samples == 0 {
+            anyhow::bail!("--samples must be at least 1");
+        }
+        Ok(SweepPlan {
+            scenario,
+            text,
+            samples,
+            shard: args.shard,
+            format: args.format,
+            out: args.out.clone(),
+            resume: None,
+        })
+    }
+}
+
+/// The signal that asked the sweep to stop (0: none yet). A first SIGINT or SIGTERM sets
+/// it; a second one ends the process at once (the unfinished file keeps its temporary
+/// name, so nothing looks complete that is not).
+fn stop_on_signals() -> anyhow::Result<std::sync::Arc<std::sync::atomic::AtomicUsize>> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, AtomicUsize};
+    let asked = Arc::new(AtomicBool::new(false));
+    let which = Arc::new(AtomicUsize::new(0));
+    for signal in [SIGINT, SIGTERM] {
+        signal_hook::flag::register_conditional_shutdown(signal, 128 + signal, asked.clone())?;
+        signal_hook::flag::register(signal, asked.clone())?;
+        signal_hook::flag::register_usize(signal, which.clone(), signal as usize)?;
+    }
+    Ok(which)
+}
+
 fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     use std::io::IsTerminal;
-    crate::output::check_output_path(&args.out)?;
-    let (scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
-    let samples = args.samples.unwrap_or(scenario.samples);
-    if samples == 0 {
-        anyhow::bail!("--samples must be at least 1");
-    }
+    let plan = SweepPlan::new(args)?;
+    let (scenario, samples) = (&plan.scenario, plan.samples);
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, std::num::NonZero::get));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()?;
-    let model = Model::new(&scenario);
-    let range = args.shard.map_or(0..samples, |s| s.range(samples));
-    let shard_note = args.shard.map_or(String::new(), |s| {
+    let model = Model::new(scenario);
+    let range = plan.shard.map_or(0..samples, |s| s.range(samples));
+    let kept = plan.resume.as_ref().map_or(0, |r| r.kept_rows());
+    let shard_note = plan.shard.map_or(String::new(), |s| {
         format!(
             ", shard {s} (samples {}..{} of {samples})",
             range.start, range.end
         )
     });
+    let resume_note = plan.resume.as_ref().map_or(String::new(), |r| {
+        format!(
+            ", resuming {} at sample {} ({} rows kept of {})",
+            plan.out.display(),
+            range.start + kept,
+            kept,
+            r.rows
+        )
+    });
     eprintln!(
-        "touchdown sweep: {} samples, seed {}, kernel {} {} ({} landers per block), {threads} thread{}{shard_note}",
+        "touchdown sweep: {} samples, seed {}, kernel {} {} ({} landers per block), {threads} thread{}{shard_note}{resume_note}",
         range.end - range.start,
         scenario.seed,
         kernels::lane::LANE_NAME,
@@ -235,46 +339,86 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         if threads == 1 { "" } else { "s" },
     );
     let info = SweepInfo {
-        scenario_toml: &text,
+        scenario_toml: &plan.text,
         seed: scenario.seed,
         samples,
         lane_type: kernels::lane::LANE_NAME,
-        shard: args.shard,
+        shard: plan.shard,
     };
-    let mut writer = SweepWriter::create(&args.out, args.format, model.legs.len(), &info)?;
+    let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?;
+    let mut counts = [0u64; Outcome::ALL.len()];
+    let mut steps = 0u64;
+    if let Some(from) = &plan.resume {
+        let (kept_counts, kept_steps) = from.copy_kept_rows(range.start, &mut writer)?;
+        for (o, c) in Outcome::ALL.iter().zip(&mut counts) {
+            *c += kept_counts.get(o.name()).copied().unwrap_or(0);
+        }
+        steps += kept_steps;
+    }
+    let todo = (range.start + kept)..range.end;
     let bar = if args.quiet || !std::io::stderr().is_terminal() {
         indicatif::ProgressBar::hidden()
     } else {
-        indicatif::ProgressBar::new(range.end - range.start).with_style(
+        indicatif::ProgressBar::new(todo.end - todo.start).with_style(
             indicatif::ProgressStyle::with_template(
                 "{bar:40} {pos}/{len} samples  {per_sec}  ETA {eta}",
             )
             .expect("valid template"),
         )
     };
-    let mut counts = [0u64; Outcome::ALL.len()];
-    let mut steps = 0u64;
+    let stop = stop_on_signals()?;
     let start = std::time::Instant::now();
-    let stats = pool.install(|| {
-        crate::sweep::run(&scenario, &model, range.clone(), CHUNK, |rows| {
+    let mut computed = 0u64;
+    let ran = pool.install(|| {
+        crate::sweep::run_until(scenario, &model, todo.clone(), CHUNK, &stop, |rows| {
             for r in &rows {
                 counts[r.summary.outcome as usize] += 1;
                 steps += r.summary.steps;
             }
+            computed += rows.len() as u64;
             bar.inc(rows.len() as u64);
             writer.push(rows)
         })
     })?;
-    let rows = writer.finish()?;
-    let wall = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
+    if ran.end < todo.end {
+        let signal = stop.load(std::sync::atomic::Ordering::Relaxed);
+        let (rows, path) = writer.finish_interrupted()?;
+        let name = if signal == signal_hook::consts::SIGTERM as usize {
+            "SIGTERM"
+        } else {
+            "SIGINT"
+        };
+        return Err(Interrupted {
+            code: (128 + signal).min(255) as u8,
+            message: format!(
+                "interrupted by {name}: {rows} of {} samples done, in {} (a valid file); \
+                 continue with: touchdown sweep --resume {}",
+                range.end - range.start,
+                path.display(),
+                plan.out.display()
+            ),
+        }
+        .into());
+    }
+    let rows = writer.finish()?;
+    if let Some(from) = &plan.resume {
+        std::fs::remove_file(&from.path).map_err(|e| {
+            anyhow::anyhow!(
+                "finished {}, but cannot remove {}: {e}",
+                plan.out.display(),
+                from.path.display()
+            )
+        })?;
+    }
+    let wall = start.elapsed().as_secs_f64();
     let mut t = format!(
         "samples                 {rows}\nwall time               {wall:.2} s\nsamples/s               {:.0}\nlander-steps/s          {:.3e} ({:.3e} per thread)\nmean steps per sample   {:.0}\nlane occupancy          {:.3}\noutcomes\n",
-        rows as f64 / wall,
-        steps as f64 / wall,
-        steps as f64 / wall / threads as f64,
+        computed as f64 / wall,
+        ran.stats.busy_lane_steps as f64 / wall,
+        ran.stats.busy_lane_steps as f64 / wall / threads as f64,
         steps as f64 / rows as f64,
-        stats.occupancy(),
+        ran.stats.occupancy(),
     );
     for (o, c) in Outcome::ALL.iter().zip(counts) {
         t.push_str(&format!(
@@ -283,7 +427,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
             100.0 * c as f64 / rows as f64
         ));
     }
-    t.push_str(&format!("wrote {}\n", args.out.display()));
+    t.push_str(&format!("wrote {}\n", plan.out.display()));
     print_out(&t);
     Ok(())
 }

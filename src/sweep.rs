@@ -19,7 +19,7 @@ use kernels::params::{HoneycombParams, LegParams, Params, lane};
 use kernels::vec3::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
 /// The `index`-th of `count` disjoint, contiguous slices of a sweep's sample range (as a
 /// Slurm array numbers its tasks: 0 to `count - 1`).
@@ -204,6 +204,8 @@ struct Worker {
 
 /// Where a worker takes samples from, and when it may stop.
 struct Feed<'a> {
+    /// Nonzero: take no more samples (the lanes finish the samples they hold).
+    stop: &'a AtomicUsize,
     /// The next sample index to take.
     next: &'a AtomicU64,
     /// Samples from `next` up to here may be taken.
@@ -217,6 +219,9 @@ struct Feed<'a> {
 impl Feed<'_> {
     /// The next sample index, if one below `cap` is left.
     fn take(&self) -> Option<u64> {
+        if self.stop.load(Ordering::Relaxed) != 0 {
+            return None;
+        }
         self.next
             .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |n| {
                 (n < self.cap).then_some(n + 1)
@@ -293,6 +298,15 @@ impl Worker {
     }
 }
 
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ran {
+    pub stats: LaneStats,
+    /// The first sample not handed to the sink: the end of the range, or where a stop left
+    /// the rows (every sample before it was handed on, none after).
+    pub end: u64,
+}
+
 /// Runs `range` on the current rayon pool, one worker (one block) per thread, handing rows
 /// to `sink` a window of `4 * chunk` samples per thread at a time, in sample order. Stops
 /// early when `sink` returns an error.
@@ -306,8 +320,23 @@ pub fn run(
     model: &Model,
     range: Range<u64>,
     chunk: u64,
-    mut sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
+    sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
 ) -> anyhow::Result<LaneStats> {
+    let never = AtomicUsize::new(0);
+    Ok(run_until(scenario, model, range, chunk, &never, sink)?.stats)
+}
+
+/// `run`, until `stop` becomes nonzero: then no lane takes another sample, the samples in
+/// the lanes finish, and the rows of the unbroken run of samples from the start of the
+/// range go to `sink` (a later sample whose predecessors did not all finish is dropped).
+pub fn run_until(
+    scenario: &Scenario,
+    model: &Model,
+    range: Range<u64>,
+    chunk: u64,
+    stop: &AtomicUsize,
+    mut sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
+) -> anyhow::Result<Ran> {
     let params = kernel_params(model);
     let threads = rayon::current_num_threads();
     let window = chunk.max(1) * 4 * threads as u64;
@@ -321,6 +350,7 @@ pub fn run(
         let done = carried.len() as u64;
         let outstanding = AtomicU64::new(end - start - done);
         let feed = Feed {
+            stop,
             next: &next,
             cap: end.saturating_add(window).min(range.end),
             window_end: end,
@@ -346,11 +376,30 @@ pub fn run(
             }
         }
         rows.sort_unstable_by_key(|r| r.sample.index);
+        if outstanding.load(Ordering::Relaxed) > 0 {
+            // Stopped: keep the unbroken run from `start`, the rows of the next window too.
+            rows.append(&mut carried);
+            rows.sort_unstable_by_key(|r| r.sample.index);
+            let unbroken = rows
+                .iter()
+                .zip(start..)
+                .take_while(|(r, i)| r.sample.index == *i)
+                .count();
+            rows.truncate(unbroken);
+            sink(rows)?;
+            return Ok(Ran {
+                stats,
+                end: start + unbroken as u64,
+            });
+        }
         debug_assert_eq!(rows.len() as u64, end - start);
         sink(rows)?;
         start = end;
     }
-    Ok(stats)
+    Ok(Ran {
+        stats,
+        end: range.end,
+    })
 }
 
 #[cfg(test)]

@@ -850,6 +850,16 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
     ),
     bad_args("negative seed", &["--seed", "-1"], &["--seed", "'-1'"]),
     bad_args(
+        "resume with nothing to resume",
+        &["--resume", "gone.arrow"],
+        &["nothing to resume", "gone.arrow.interrupted"],
+    ),
+    bad_args(
+        "resume with settings of its own",
+        &["--resume", "gone.arrow", "--samples", "5"],
+        &["--resume", "cannot be used with", "--samples"],
+    ),
+    bad_args(
         "shard index past the count",
         &["--shard", "4/4"],
         &["--shard", "\"4/4\"", "K from 0 to N-1"],

@@ -3,6 +3,7 @@
 mod agreement;
 mod cli;
 mod common;
+mod interrupt;
 mod shards;
 mod sweep_cli;
 mod validation;

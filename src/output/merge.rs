@@ -3,16 +3,13 @@
 //! order, cut into the same batches. Shards that do not belong together are refused before
 //! anything is written.
 
-use super::sweep::{BATCH_ROWS, Format, SHARD_KEYS, SweepInfo, SweepWriter, schema};
+use super::read::{format_of, open};
+use super::sweep::{Format, Rebatcher, SHARD_KEYS, SweepInfo, SweepWriter, schema};
 use crate::sweep::Shard;
 use anyhow::{anyhow, bail};
-use arrow_array::{Array, RecordBatch, UInt64Array};
+use arrow_array::{Array, UInt64Array};
 use arrow_schema::SchemaRef;
-use arrow_select::concat::concat_batches;
-use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use std::collections::BTreeMap;
-use std::fs::File;
-use std::io::{BufReader, Read};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
@@ -249,97 +246,6 @@ fn copy_rows(
     }
     Ok(())
 }
-
-/// Cuts a stream of batches into batches of `BATCH_ROWS` rows (the last one shorter), as
-/// the sweep writes them, holding at most one batch's rows.
-struct Rebatcher {
-    schema: SchemaRef,
-    pieces: Vec<RecordBatch>,
-    rows: usize,
-}
-
-impl Rebatcher {
-    fn new(schema: SchemaRef) -> Rebatcher {
-        Rebatcher {
-            schema,
-            pieces: Vec::new(),
-            rows: 0,
-        }
-    }
-
-    fn push(&mut self, b: RecordBatch, writer: &mut SweepWriter) -> anyhow::Result<()> {
-        // The same columns, under the schema of the whole sweep (no shard metadata).
-        let mut b = RecordBatch::try_new(self.schema.clone(), b.columns().to_vec())?;
-        while self.rows + b.num_rows() >= BATCH_ROWS {
-            let take = BATCH_ROWS - self.rows;
-            self.pieces.push(b.slice(0, take));
-            b = b.slice(take, b.num_rows() - take);
-            self.rows = 0;
-            self.write(writer)?;
-        }
-        if b.num_rows() > 0 {
-            self.rows += b.num_rows();
-            self.pieces.push(b);
-        }
-        Ok(())
-    }
-
-    fn finish(mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
-        if self.pieces.is_empty() {
-            return Ok(());
-        }
-        self.write(writer)
-    }
-
-    /// Writes the pieces as one batch of fresh (unsliced) arrays.
-    fn write(&mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
-        let whole = concat_batches(&self.schema, &self.pieces)?;
-        self.pieces.clear();
-        writer.write_batch(&whole)
-    }
-}
-
-/// The format of a file, from its first bytes.
-fn format_of(path: &Path) -> anyhow::Result<Format> {
-    let mut head = [0u8; 6];
-    let n = File::open(path)
-        .and_then(|mut f| f.read(&mut head))
-        .map_err(|e| anyhow!("cannot read shard {}: {e}", path.display()))?;
-    match &head[..n] {
-        [b'A', b'R', b'R', b'O', b'W', b'1'] => Ok(Format::Arrow),
-        [b'P', b'A', b'R', b'1', ..] => Ok(Format::Parquet),
-        _ => bail!(
-            "{} is neither an Arrow IPC file nor a Parquet file",
-            path.display()
-        ),
-    }
-}
-
-/// The batches of a file, and its schema with the metadata it was written with.
-fn open(path: &Path, format: Format) -> anyhow::Result<(SchemaRef, Batches)> {
-    let context = |e: &dyn std::fmt::Display| anyhow!("cannot read {}: {e}", path.display());
-    let file = File::open(path).map_err(|e| context(&e))?;
-    Ok(match format {
-        Format::Arrow => {
-            let r = arrow_ipc::reader::FileReader::try_new(BufReader::new(file), None)
-                .map_err(|e| context(&e))?;
-            (r.schema(), Box::new(r))
-        }
-        Format::Parquet => {
-            // The reader's own batches carry no schema metadata: take the builder's schema.
-            let b = ParquetRecordBatchReaderBuilder::try_new(file).map_err(|e| context(&e))?;
-            let schema = b.schema().clone();
-            let r = b
-                .with_batch_size(BATCH_ROWS)
-                .build()
-                .map_err(|e| context(&e))?;
-            (schema, Box::new(r))
-        }
-    })
-}
-
-/// Record batches as a reader yields them.
-type Batches = Box<dyn Iterator<Item = Result<RecordBatch, arrow_schema::ArrowError>>>;
 
 /// Whether `a` and `b` name the same existing file.
 fn same_file(a: &Path, b: &Path) -> bool {

@@ -2,6 +2,8 @@
 //! files that appear under their name only when complete.
 
 pub mod merge;
+pub mod read;
+pub mod resume;
 pub mod sweep;
 pub mod trace;
 
@@ -50,19 +52,29 @@ impl AtomicFile {
         Ok((handle, BufWriter::with_capacity(1 << 20, file)))
     }
 
+    /// The final path.
+    #[must_use]
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
     /// Flushes and syncs `writer`, then renames the file onto its final path.
-    pub fn commit(mut self, mut writer: BufWriter<File>) -> anyhow::Result<()> {
+    pub fn commit(self, writer: BufWriter<File>) -> anyhow::Result<()> {
+        let path = self.path.clone();
+        self.commit_as(writer, &path)
+    }
+
+    /// Flushes and syncs `writer`, then renames the file onto `path` (for a file that is
+    /// valid but not what the final path promises, such as an interrupted sweep's).
+    pub fn commit_as(mut self, mut writer: BufWriter<File>, path: &Path) -> anyhow::Result<()> {
         let context = |e: std::io::Error| {
             anyhow::anyhow!("cannot finish output file {}: {e}", self.partial.display())
         };
         writer.flush().map_err(context)?;
         let file = writer.into_inner().map_err(|e| context(e.into_error()))?;
         file.sync_all().map_err(context)?;
-        std::fs::rename(&self.partial, &self.path).map_err(|e| {
-            anyhow::anyhow!(
-                "cannot move the finished file onto {}: {e}",
-                self.path.display()
-            )
+        std::fs::rename(&self.partial, path).map_err(|e| {
+            anyhow::anyhow!("cannot move the finished file onto {}: {e}", path.display())
         })?;
         self.committed = true;
         Ok(())

@@ -9,6 +9,7 @@ use arrow_array::builder::{Float64Builder, StringBuilder, UInt32Builder, UInt64B
 use arrow_array::{ArrayRef, RecordBatch};
 use arrow_ipc::writer::FileWriter;
 use arrow_schema::{DataType, Field, Schema, SchemaRef};
+use arrow_select::concat::concat_batches;
 use parquet::arrow::ArrowWriter;
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -325,7 +326,19 @@ impl SweepWriter {
     }
 
     /// Writes the last batch, closes the file and gives it its name. Returns the row count.
-    pub fn finish(mut self) -> anyhow::Result<u64> {
+    pub fn finish(self) -> anyhow::Result<u64> {
+        self.close(None)
+    }
+
+    /// Writes the rows pushed so far and closes the file as a valid one, under the name of
+    /// an interrupted sweep (`OUT.interrupted`), not the final name. Returns the row count
+    /// and that path.
+    pub fn finish_interrupted(self) -> anyhow::Result<(u64, std::path::PathBuf)> {
+        let path = super::resume::interrupted_path(self.file.path());
+        Ok((self.close(Some(&path))?, path))
+    }
+
+    fn close(mut self, name: Option<&Path>) -> anyhow::Result<u64> {
         self.flush()?;
         let out = match self.sink {
             Sink::Arrow(mut w) => {
@@ -334,7 +347,62 @@ impl SweepWriter {
             }
             Sink::Parquet(w) => w.into_inner()?,
         };
-        self.file.commit(out)?;
+        match name {
+            None => self.file.commit(out)?,
+            Some(path) => self.file.commit_as(out, path)?,
+        }
         Ok(self.rows)
+    }
+}
+
+/// Cuts a stream of batches into batches of `BATCH_ROWS` rows (the last one shorter), as
+/// the sweep writes them, holding at most one batch's rows.
+pub struct Rebatcher {
+    schema: SchemaRef,
+    pieces: Vec<RecordBatch>,
+    rows: usize,
+}
+
+impl Rebatcher {
+    #[must_use]
+    pub fn new(schema: SchemaRef) -> Rebatcher {
+        Rebatcher {
+            schema,
+            pieces: Vec::new(),
+            rows: 0,
+        }
+    }
+
+    /// Takes the rows of `b` (columns as in the schema), writing every full batch.
+    pub fn push(&mut self, b: RecordBatch, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        // The same columns, under the schema of the whole sweep (no shard metadata).
+        let mut b = RecordBatch::try_new(self.schema.clone(), b.columns().to_vec())?;
+        while self.rows + b.num_rows() >= BATCH_ROWS {
+            let take = BATCH_ROWS - self.rows;
+            self.pieces.push(b.slice(0, take));
+            b = b.slice(take, b.num_rows() - take);
+            self.rows = 0;
+            self.write(writer)?;
+        }
+        if b.num_rows() > 0 {
+            self.rows += b.num_rows();
+            self.pieces.push(b);
+        }
+        Ok(())
+    }
+
+    /// Writes the rows left, if any.
+    pub fn finish(mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        if self.pieces.is_empty() {
+            return Ok(());
+        }
+        self.write(writer)
+    }
+
+    /// Writes the pieces as one batch of fresh (unsliced) arrays.
+    fn write(&mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        let whole = concat_batches(&self.schema, &self.pieces)?;
+        self.pieces.clear();
+        writer.write_batch(&whole)
     }
 }

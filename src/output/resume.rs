@@ -1,0 +1,163 @@
+//! Interrupted sweeps: a sweep stopped by SIGINT or SIGTERM closes its file as a valid one
+//! under `OUT.interrupted` (never under `OUT`, which only a complete sweep takes), and
+//! `sweep --resume OUT` reads its settings and rows back from there to finish the sweep.
+
+use super::ENGINE;
+use super::read::{format_of, open};
+use super::sweep::{BATCH_ROWS, Format, Rebatcher, SHARD_KEYS, SweepWriter};
+use crate::sweep::Shard;
+use anyhow::{anyhow, bail};
+use arrow_array::{Array, StringArray, UInt64Array};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Where an interrupted sweep to `out` keeps its rows.
+#[must_use]
+pub fn interrupted_path(out: &Path) -> PathBuf {
+    let mut name = out.file_name().unwrap_or_default().to_os_string();
+    name.push(".interrupted");
+    out.with_file_name(name)
+}
+
+/// An interrupted sweep, as its file describes it.
+pub struct Interrupted {
+    pub path: PathBuf,
+    pub format: Format,
+    pub scenario_toml: String,
+    pub seed: u64,
+    /// Samples of the whole sweep.
+    pub samples: u64,
+    pub shard: Option<Shard>,
+    pub lane_type: String,
+    /// Rows in the file: samples `first..first + rows` of the sweep.
+    pub rows: u64,
+}
+
+impl Interrupted {
+    /// Reads the interrupted sweep to `out`: its settings and how many rows it holds.
+    pub fn read(out: &Path) -> anyhow::Result<Interrupted> {
+        let path = interrupted_path(out);
+        if !path.exists() {
+            if out.exists() {
+                bail!(
+                    "nothing to resume: {} is complete (no {} beside it)",
+                    out.display(),
+                    path.display()
+                );
+            }
+            bail!(
+                "nothing to resume: no interrupted sweep {} (a sweep killed outright leaves \
+                 none; run it again)",
+                path.display()
+            );
+        }
+        let format = format_of(&path)?;
+        let (schema, batches) = open(&path, format)?;
+        let meta = schema.metadata();
+        let get = |key: &str| -> anyhow::Result<String> {
+            meta.get(key).cloned().ok_or_else(|| {
+                anyhow!(
+                    "{} is not an interrupted sweep of touchdown: no {key} in its schema",
+                    path.display()
+                )
+            })
+        };
+        let number = |key: &str| -> anyhow::Result<u64> {
+            let v = get(key)?;
+            v.parse()
+                .map_err(|_| anyhow!("{}: {key} = {v:?} is not a whole number", path.display()))
+        };
+        if get("touchdown.kind")? != "sweep" {
+            bail!("{} is not a sweep file", path.display());
+        }
+        let engine = get("touchdown.engine")?;
+        if engine != ENGINE {
+            bail!(
+                "{} was written by {engine}; this is {ENGINE}, which may not give the same rows: \
+                 run the sweep again",
+                path.display()
+            );
+        }
+        let shard = match meta.get(SHARD_KEYS[0]) {
+            None => None,
+            Some(s) => Some(
+                s.parse::<Shard>()
+                    .map_err(|e| anyhow!("{}: bad {}: {e}", path.display(), SHARD_KEYS[0]))?,
+            ),
+        };
+        let mut rows = 0u64;
+        for b in batches {
+            rows += b
+                .map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?
+                .num_rows() as u64;
+        }
+        Ok(Interrupted {
+            format,
+            scenario_toml: get("touchdown.scenario")?,
+            seed: number("touchdown.seed")?,
+            samples: number("touchdown.samples")?,
+            shard,
+            lane_type: get("touchdown.lane_type")?,
+            rows,
+            path,
+        })
+    }
+
+    /// The rows that a resumed sweep takes over: the whole batches (the rows after them are
+    /// computed again, so that the resumed file is cut into the same batches as one that
+    /// never stopped).
+    #[must_use]
+    pub fn kept_rows(&self) -> u64 {
+        self.rows / BATCH_ROWS as u64 * BATCH_ROWS as u64
+    }
+
+    /// Copies the first `kept_rows()` rows to `writer`, checking that they are samples
+    /// `first..`, in order. Returns the outcome counts (by name) and the lander-steps of
+    /// the copied rows, for the closing summary.
+    pub fn copy_kept_rows(
+        &self,
+        first: u64,
+        writer: &mut SweepWriter,
+    ) -> anyhow::Result<(HashMap<String, u64>, u64)> {
+        let kept = self.kept_rows();
+        let (_, batches) = open(&self.path, self.format)?;
+        let mut rebatcher = Rebatcher::new(writer.schema().clone());
+        let (mut counts, mut steps) = (HashMap::new(), 0u64);
+        let mut next = first;
+        for b in batches {
+            if next == first + kept {
+                break;
+            }
+            let b = b.map_err(|e| anyhow!("cannot read {}: {e}", self.path.display()))?;
+            let b = b.slice(0, b.num_rows().min((first + kept - next) as usize));
+            let column = |name: &str| {
+                b.column_by_name(name)
+                    .ok_or_else(|| anyhow!("{}: no column {name}", self.path.display()))
+            };
+            let samples = column("sample")?.as_any().downcast_ref::<UInt64Array>();
+            let outcomes = column("outcome")?.as_any().downcast_ref::<StringArray>();
+            let step_counts = column("steps")?.as_any().downcast_ref::<UInt64Array>();
+            let (Some(samples), Some(outcomes), Some(step_counts)) =
+                (samples, outcomes, step_counts)
+            else {
+                bail!("{}: a column has the wrong type", self.path.display());
+            };
+            for s in samples.values() {
+                if *s != next {
+                    bail!(
+                        "{}: holds sample {s} where sample {next} belongs",
+                        self.path.display()
+                    );
+                }
+                next += 1;
+            }
+            for o in outcomes.iter().flatten() {
+                *counts.entry(o.to_string()).or_insert(0) += 1;
+            }
+            steps += step_counts.values().iter().sum::<u64>();
+            rebatcher.push(b, writer)?;
+        }
+        rebatcher.finish(writer)?;
+        Ok((counts, steps))
+    }
+}

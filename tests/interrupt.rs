@@ -1,0 +1,196 @@
+//! Interrupted sweeps: SIGINT or SIGTERM stops a sweep with a valid file of the rows done
+//! beside the output (never under its name) and exit code 128 + signal; `--resume` then
+//! finishes the file that an uninterrupted sweep writes, byte for byte.
+
+use crate::common::{TempDir, read_bytes, touchdown};
+use arrow_array::{Array, UInt64Array};
+use arrow_ipc::reader::FileReader;
+use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Flights cut at 5 s: about 60,000 samples/s on two cores, so that 300,000 samples run for
+/// seconds, long enough to be interrupted, and more than four record batches.
+const SHORT: &str = "[simulation]\nt_max_s = 5.0\n";
+
+/// The sample column of a sweep file (Arrow or Parquet).
+fn sample_column(path: &Path) -> Vec<u64> {
+    let file = std::fs::File::open(path).unwrap();
+    let batches: Vec<_> = if read_bytes(path).starts_with(b"PAR1") {
+        ParquetRecordBatchReaderBuilder::try_new(file)
+            .unwrap()
+            .build()
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap()
+    } else {
+        FileReader::try_new(file, None)
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap()
+    };
+    batches
+        .iter()
+        .flat_map(|b| {
+            let s = b.column(0).as_any().downcast_ref::<UInt64Array>().unwrap();
+            s.values().to_vec()
+        })
+        .collect()
+}
+
+/// Starts `touchdown ARGS` in `dir`, sends `signal` (`INT`, `TERM`) once it has run for a
+/// while, and returns its exit code and stderr.
+fn interrupt(dir: &TempDir, args: &[&str], out: &str, signal: &str) -> (Option<i32>, String) {
+    let mut child = Command::new(crate::common::BIN)
+        .args(args)
+        .current_dir(dir.path())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start the touchdown binary");
+    // The temporary file appears when the sweep starts; let it run a second more.
+    let partial = dir.join(&format!("{out}.partial"));
+    let start = Instant::now();
+    while !partial.exists() && start.elapsed() < Duration::from_secs(30) {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    std::thread::sleep(Duration::from_millis(1000));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "the sweep `{}` ended before it could be interrupted",
+        args.join(" ")
+    );
+    let sent = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .expect("run kill");
+    assert!(sent.success(), "kill -{signal} failed");
+    let output = child.wait_with_output().expect("wait for the sweep");
+    (
+        output.status.code(),
+        String::from_utf8(output.stderr).unwrap(),
+    )
+}
+
+/// Checks an interrupted run: its exit code, its message, no file under the output name,
+/// and a valid file of samples `first..first + n` beside it. Returns `n`.
+fn check_interrupted(
+    dir: &TempDir,
+    out: &str,
+    (code, stderr): (Option<i32>, String),
+    expected_code: i32,
+    first: u64,
+) -> u64 {
+    assert_eq!(code, Some(expected_code), "exit code; stderr:\n{stderr}");
+    assert!(
+        stderr.contains(&format!("continue with: touchdown sweep --resume {out}")),
+        "stderr:\n{stderr}"
+    );
+    assert!(
+        !dir.join(out).exists(),
+        "an interrupted sweep left a file under the output name"
+    );
+    let samples = sample_column(&dir.join(&format!("{out}.interrupted")));
+    let n = samples.len() as u64;
+    assert_eq!(samples, (first..first + n).collect::<Vec<_>>());
+    assert!(
+        stderr.contains(&format!(": {n} of ")),
+        "the message gives {n} rows done: {stderr}"
+    );
+    n
+}
+
+#[test]
+fn sigint_then_resume_gives_the_uninterrupted_file() {
+    let dir = TempDir::new("interrupt-int");
+    dir.write("s.toml", SHORT);
+    let args = [
+        "sweep",
+        "--scenario",
+        "s.toml",
+        "--samples",
+        "300000",
+        "--threads",
+        "2",
+    ];
+    let whole = touchdown(
+        dir.path(),
+        &[&args[..], &["--quiet", "--out", "whole.arrow"]].concat(),
+    );
+    assert_eq!(whole.code, Some(0), "{whole}");
+
+    let run = interrupt(
+        &dir,
+        &[&args[..], &["--out", "r.arrow"]].concat(),
+        "r.arrow",
+        "INT",
+    );
+    let done = check_interrupted(&dir, "r.arrow", run, 130, 0);
+    assert!(done < 300_000);
+
+    let resumed = touchdown(dir.path(), &["sweep", "--resume", "r.arrow", "--quiet"]);
+    assert_eq!(resumed.code, Some(0), "{resumed}");
+    assert!(
+        read_bytes(&dir.join("r.arrow")) == read_bytes(&dir.join("whole.arrow")),
+        "the resumed sweep differs from the uninterrupted one"
+    );
+    assert!(
+        resumed.stdout.contains("samples                 300000"),
+        "{resumed}"
+    );
+    assert_eq!(dir.entries(), ["r.arrow", "s.toml", "whole.arrow"]);
+}
+
+#[test]
+fn sigterm_twice_then_resume_gives_the_uninterrupted_shard() {
+    let dir = TempDir::new("interrupt-term");
+    dir.write("s.toml", SHORT);
+    // The second half of 600,000 samples, as Parquet: samples 300,000..600,000.
+    let args = [
+        "sweep",
+        "--scenario",
+        "s.toml",
+        "--samples",
+        "600000",
+        "--shard",
+        "1/2",
+        "--format",
+        "parquet",
+        "--threads",
+        "2",
+    ];
+    let whole = touchdown(
+        dir.path(),
+        &[&args[..], &["--quiet", "--out", "whole.parquet"]].concat(),
+    );
+    assert_eq!(whole.code, Some(0), "{whole}");
+
+    let run = interrupt(
+        &dir,
+        &[&args[..], &["--out", "r.parquet"]].concat(),
+        "r.parquet",
+        "TERM",
+    );
+    let first = check_interrupted(&dir, "r.parquet", run, 143, 300_000);
+    // The resumed sweep, interrupted in turn, keeps at least the whole batches it took over.
+    let run = interrupt(
+        &dir,
+        &["sweep", "--resume", "r.parquet", "--threads", "2"],
+        "r.parquet",
+        "TERM",
+    );
+    let second = check_interrupted(&dir, "r.parquet", run, 143, 300_000);
+    assert!(
+        second >= first / 65_536 * 65_536,
+        "{second} rows after the second stop, {first} after the first"
+    );
+
+    let resumed = touchdown(dir.path(), &["sweep", "--resume", "r.parquet", "--quiet"]);
+    assert_eq!(resumed.code, Some(0), "{resumed}");
+    assert!(
+        read_bytes(&dir.join("r.parquet")) == read_bytes(&dir.join("whole.parquet")),
+        "the resumed shard differs from the uninterrupted one"
+    );
+    assert_eq!(dir.entries(), ["r.parquet", "s.toml", "whole.parquet"]);
+}
