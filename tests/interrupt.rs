@@ -101,6 +101,29 @@ fn check_interrupted(
     n
 }
 
+/// Runs the sweep `args` to completion into `out`, the file a resumed sweep must equal.
+fn uninterrupted(dir: &TempDir, args: &[&str], out: &str) {
+    let run = touchdown(dir.path(), &[args, &["--quiet", "--out", out]].concat());
+    assert_eq!(run.code, Some(0), "{run}");
+}
+
+/// Resumes the sweep to `out` and checks that it ends as `whole`, with nothing left beside.
+fn resume_to_the_end(dir: &TempDir, out: &str, whole: &str, samples: u64) {
+    let resumed = touchdown(dir.path(), &["sweep", "--resume", out, "--quiet"]);
+    assert_eq!(resumed.code, Some(0), "{resumed}");
+    assert!(
+        read_bytes(&dir.join(out)) == read_bytes(&dir.join(whole)),
+        "the resumed sweep {out} differs from the uninterrupted {whole}"
+    );
+    assert!(
+        resumed
+            .stdout
+            .contains(&format!("samples                 {samples}\n")),
+        "{resumed}"
+    );
+    assert_eq!(dir.entries(), [out, "s.toml", whole]);
+}
+
 #[test]
 fn sigint_then_resume_gives_the_uninterrupted_file() {
     let dir = TempDir::new("interrupt-int");
@@ -114,11 +137,7 @@ fn sigint_then_resume_gives_the_uninterrupted_file() {
         "--threads",
         "2",
     ];
-    let whole = touchdown(
-        dir.path(),
-        &[&args[..], &["--quiet", "--out", "whole.arrow"]].concat(),
-    );
-    assert_eq!(whole.code, Some(0), "{whole}");
+    uninterrupted(&dir, &args, "whole.arrow");
 
     let run = interrupt(
         &dir,
@@ -129,17 +148,7 @@ fn sigint_then_resume_gives_the_uninterrupted_file() {
     let done = check_interrupted(&dir, "r.arrow", run, 130, 0);
     assert!(done < 300_000);
 
-    let resumed = touchdown(dir.path(), &["sweep", "--resume", "r.arrow", "--quiet"]);
-    assert_eq!(resumed.code, Some(0), "{resumed}");
-    assert!(
-        read_bytes(&dir.join("r.arrow")) == read_bytes(&dir.join("whole.arrow")),
-        "the resumed sweep differs from the uninterrupted one"
-    );
-    assert!(
-        resumed.stdout.contains("samples                 300000"),
-        "{resumed}"
-    );
-    assert_eq!(dir.entries(), ["r.arrow", "s.toml", "whole.arrow"]);
+    resume_to_the_end(&dir, "r.arrow", "whole.arrow", 300_000);
 }
 
 #[test]
@@ -160,11 +169,7 @@ fn sigterm_twice_then_resume_gives_the_uninterrupted_shard() {
         "--threads",
         "2",
     ];
-    let whole = touchdown(
-        dir.path(),
-        &[&args[..], &["--quiet", "--out", "whole.parquet"]].concat(),
-    );
-    assert_eq!(whole.code, Some(0), "{whole}");
+    uninterrupted(&dir, &args, "whole.parquet");
 
     let run = interrupt(
         &dir,
@@ -186,11 +191,5 @@ fn sigterm_twice_then_resume_gives_the_uninterrupted_shard() {
         "{second} rows after the second stop, {first} after the first"
     );
 
-    let resumed = touchdown(dir.path(), &["sweep", "--resume", "r.parquet", "--quiet"]);
-    assert_eq!(resumed.code, Some(0), "{resumed}");
-    assert!(
-        read_bytes(&dir.join("r.parquet")) == read_bytes(&dir.join("whole.parquet")),
-        "the resumed shard differs from the uninterrupted one"
-    );
-    assert_eq!(dir.entries(), ["r.parquet", "s.toml", "whole.parquet"]);
+    resume_to_the_end(&dir, "r.parquet", "whole.parquet", 300_000);
 }
