@@ -329,6 +329,14 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
             r.rows
         )
     });
+    let info = SweepInfo {
+        scenario_toml: &plan.text,
+        seed: scenario.seed,
+        samples,
+        lane_type: kernels::lane::LANE_NAME,
+        shard: plan.shard,
+    };
+    let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?;
     eprintln!(
         "touchdown sweep: {} samples, seed {}, kernel {} {} ({} landers per block), {threads} thread{}{shard_note}{resume_note}",
         range.end - range.start,
@@ -338,14 +346,6 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         kernels::lane::LANES,
         if threads == 1 { "" } else { "s" },
     );
-    let info = SweepInfo {
-        scenario_toml: &plan.text,
-        seed: scenario.seed,
-        samples,
-        lane_type: kernels::lane::LANE_NAME,
-        shard: plan.shard,
-    };
-    let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?;
     let mut counts = [0u64; Outcome::ALL.len()];
     let mut steps = 0u64;
     if let Some(from) = &plan.resume {

@@ -850,6 +850,16 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
     ),
     bad_args("negative seed", &["--seed", "-1"], &["--seed", "'-1'"]),
     bad_args(
+        "output where no file can be made",
+        &["--out", "/proc/sweep.arrow"],
+        &["cannot write output file /proc/sweep.arrow.partial"],
+    ),
+    bad_args(
+        "output in a folder that is a file",
+        &["--out", "/proc/self/status/sweep.arrow"],
+        &["/proc/self/status is a file, not a folder"],
+    ),
+    bad_args(
         "resume with nothing to resume",
         &["--resume", "gone.arrow"],
         &["nothing to resume", "gone.arrow.interrupted"],
@@ -930,4 +940,32 @@ fn bad_sweep_input_is_refused_before_any_work() {
         BAD_SWEEP_INPUTS.len(),
         failures.join("\n\n")
     );
+}
+
+/// A full disk, simulated by a file size limit (and SIGXFSZ ignored, as a full disk sends
+/// no signal): the write fails, the sweep says which file and why, exits 2 and leaves no
+/// file behind.
+#[test]
+fn a_full_disk_is_reported_and_leaves_no_file() {
+    let dir = TempDir::new("sweep-full-disk");
+    dir.write("short.toml", SHORT);
+    let out = Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "trap '' XFSZ; ulimit -f 512; exec {} sweep --scenario short.toml --samples 20000 \\
+             --quiet --out full.arrow",
+            crate::common::BIN
+        ))
+        .current_dir(dir.path())
+        .output()
+        .expect("run sh");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+    assert!(
+        stderr.contains("cannot write output file full.arrow.partial")
+            && stderr.contains("File too large"),
+        "stderr: {stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "stderr: {stderr}");
+    assert_eq!(dir.entries(), ["short.toml"]);
 }

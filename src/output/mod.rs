@@ -52,6 +52,12 @@ impl AtomicFile {
         Ok((handle, BufWriter::with_capacity(1 << 20, file)))
     }
 
+    /// The temporary path the file is written under.
+    #[must_use]
+    pub fn partial_path(&self) -> &Path {
+        &self.partial
+    }
+
     /// The final path.
     #[must_use]
     pub fn path(&self) -> &Path {
@@ -101,6 +107,13 @@ pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
+    if parent.exists() && !parent.is_dir() {
+        anyhow::bail!(
+            "cannot write output file {}: {} is a file, not a folder",
+            path.display(),
+            parent.display()
+        );
+    }
     if !parent.is_dir() {
         anyhow::bail!(
             "cannot write output file {}: folder {} does not exist",

@@ -317,10 +317,11 @@ impl SweepWriter {
     /// be mixed with `push`.
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
         debug_assert!(self.pending.is_empty(), "write_batch after push");
-        match &mut self.sink {
-            Sink::Arrow(w) => w.write(b)?,
-            Sink::Parquet(w) => w.write(b)?,
-        }
+        let written = match &mut self.sink {
+            Sink::Arrow(w) => w.write(b).map_err(|e| e.to_string()),
+            Sink::Parquet(w) => w.write(b).map_err(|e| e.to_string()),
+        };
+        written.map_err(|e| self.write_error(&e))?;
         self.rows += b.num_rows() as u64;
         Ok(())
     }
@@ -338,15 +339,29 @@ impl SweepWriter {
         Ok((self.close(Some(&path))?, path))
     }
 
+    /// An error writing the file, naming it.
+    fn write_error(&self, e: &str) -> anyhow::Error {
+        anyhow::anyhow!(
+            "cannot write output file {}: {e}",
+            self.file.partial_path().display()
+        )
+    }
+
     fn close(mut self, name: Option<&Path>) -> anyhow::Result<u64> {
         self.flush()?;
         let out = match self.sink {
-            Sink::Arrow(mut w) => {
-                w.finish()?;
-                w.into_inner()?
-            }
-            Sink::Parquet(w) => w.into_inner()?,
+            Sink::Arrow(mut w) => w
+                .finish()
+                .and_then(|()| w.into_inner())
+                .map_err(|e| e.to_string()),
+            Sink::Parquet(w) => w.into_inner().map_err(|e| e.to_string()),
         };
+        let out = out.map_err(|e| {
+            anyhow::anyhow!(
+                "cannot write output file {}: {e}",
+                self.file.partial_path().display()
+            )
+        })?;
         match name {
             None => self.file.commit(out)?,
             Some(path) => self.file.commit_as(out, path)?,
