@@ -404,7 +404,73 @@ pub fn run_until(
 
 #[cfg(test)]
 mod tests {
-    use super::Shard;
+    use super::{LANES, Model, Outcome, Scenario, Shard, kernel_params, lane_init, lane_summary};
+    use kernels::block::Block;
+
+    /// A lane whose state turns non-finite mid-flight ends at once as `diverged`, with
+    /// finite numbers in every result, and the lanes beside it go on untouched.
+    #[test]
+    fn a_lane_turned_non_finite_ends_as_diverged_without_nan_results() {
+        let scenario = Scenario::default();
+        let model = Model::new(&scenario);
+        let params = kernel_params(&model);
+        let poisons: [(&str, fn(&mut Block, usize)); 4] = [
+            ("velocity NaN", |b, i| {
+                b.velocity_m_s.x.as_mut_array()[i] = f64::NAN
+            }),
+            ("position infinite", |b, i| {
+                b.position_m.z.as_mut_array()[i] = f64::INFINITY;
+            }),
+            ("body rate NaN", |b, i| {
+                b.rate_rad_s.y.as_mut_array()[i] = f64::NAN
+            }),
+            ("attitude NaN", |b, i| {
+                b.attitude.w.as_mut_array()[i] = f64::NAN
+            }),
+        ];
+        for (what, poison) in poisons {
+            let mut block = Block::new(&params);
+            for i in 0..LANES {
+                let sample = crate::sampling::sample(&scenario, i as u64);
+                block.load(i, &lane_init(&model, &sample));
+            }
+            for _ in 0..20 {
+                let dt = kernels::step::step_size(&params, &block);
+                kernels::step::step(&params, &mut block, dt);
+                let decided = kernels::outcome::observe(&params, &mut block);
+                assert_eq!(decided.to_bitmask(), 0, "{what}: nothing decided yet");
+            }
+            let lane = 3;
+            poison(&mut block, lane);
+            let dt = kernels::step::step_size(&params, &block);
+            kernels::step::step(&params, &mut block, dt);
+            let decided = kernels::outcome::observe(&params, &mut block);
+            assert_eq!(
+                decided.to_bitmask(),
+                1 << lane,
+                "{what}: only the poisoned lane ends"
+            );
+            let s = lane_summary(&block, lane);
+            assert_eq!(s.outcome, Outcome::Diverged, "{what}");
+            let mut numbers = vec![
+                s.decided_s,
+                s.final_tilt_deg,
+                s.max_tilt_deg,
+                s.displacement_m,
+                s.peak_acceleration_m_s2,
+                s.peak_acceleration_z_body_m_s2,
+                s.max_penetration_m,
+            ];
+            numbers.extend(s.first_contact_s);
+            for l in &s.legs {
+                numbers.extend([l.peak_normal_force_n, l.stroke_m, l.absorbed_j]);
+            }
+            assert!(
+                numbers.iter().all(|x| x.is_finite()),
+                "{what}: a result is not finite: {s:?}"
+            );
+        }
+    }
 
     #[test]
     fn shards_cover_the_range_once_in_order() {
