@@ -414,7 +414,8 @@ mod tests {
         let scenario = Scenario::default();
         let model = Model::new(&scenario);
         let params = kernel_params(&model);
-        let poisons: [(&str, fn(&mut Block, usize)); 4] = [
+        type Poison = fn(&mut Block, usize);
+        let poisons: [(&str, Poison); 4] = [
             ("velocity NaN", |b, i| {
                 b.velocity_m_s.x.as_mut_array()[i] = f64::NAN
             }),
