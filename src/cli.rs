@@ -28,6 +28,9 @@ pub enum Command {
     Trace(TraceArgs),
     /// Run a Monte Carlo sweep through the SIMD kernels and write one row per sample.
     Sweep(SweepArgs),
+    /// Summarise a sweep file: outcomes with 95 % intervals, the allowable slope per
+    /// azimuth sector, peak loads (Markdown on stdout).
+    Report(ReportArgs),
     /// Join the shard files of one sweep (`sweep --shard K/N`) into the file the sweep
     /// writes when run in one process.
     Merge(MergeArgs),
@@ -70,6 +73,14 @@ pub struct SweepArgs {
     /// array numbers its tasks); `touchdown merge` joins the N files.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<Shard>,
+}
+
+/// Flags of `touchdown report`.
+#[derive(clap::Args, Debug)]
+pub struct ReportArgs {
+    /// The sweep file (Arrow IPC or Parquet).
+    #[arg(value_name = "SWEEP")]
+    pub sweep: PathBuf,
 }
 
 /// Flags of `touchdown merge`.
@@ -155,6 +166,10 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Trace(args) => run_trace(&args),
         Command::Sweep(args) => run_sweep(&args),
+        Command::Report(args) => {
+            print_out(&crate::report::report(&args.sweep)?);
+            Ok(())
+        }
         Command::Merge(args) => {
             let m = crate::output::merge::merge(&args.shards, &args.out, args.format)?;
             print_out(&format!(

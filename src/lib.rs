@@ -6,6 +6,7 @@
 pub mod cli;
 pub mod output;
 pub mod reference;
+pub mod report;
 pub mod sampling;
 pub mod scenario;
 pub mod sweep;

@@ -4,6 +4,7 @@ mod agreement;
 mod cli;
 mod common;
 mod interrupt;
+mod report;
 mod scenario_fuzz;
 mod shards;
 mod sweep_cli;

@@ -1,0 +1,280 @@
+//! `touchdown report`: what a sweep file says, for people. Outcome counts with 95 %
+//! confidence intervals, the allowable slope per sector of downhill azimuth relative to the
+//! lander, and the peak loads. Markdown, so that it reads on a terminal and pastes into a
+//! design note.
+
+use crate::output::read::{format_of, open};
+use anyhow::{anyhow, bail};
+use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Sectors of downhill azimuth relative to the lander (`downhill_azimuth - yaw`), deg.
+pub const SECTOR_DEG: f64 = 45.0;
+
+/// The share of stable samples that makes a slope allowable.
+pub const ALLOWABLE_STABLE: f64 = 0.99;
+
+/// Fewest samples at or below a slope for its stable share to count.
+pub const MIN_SAMPLES: usize = 100;
+
+/// The 95 % Wilson score interval of `k` successes in `n` trials.
+#[must_use]
+pub fn wilson_interval(k: u64, n: u64) -> (f64, f64) {
+    if n == 0 {
+        return (0.0, 1.0);
+    }
+    let z = 1.959_963_984_540_054;
+    let (n, p) = (n as f64, k as f64 / n as f64);
+    let centre = (p + z * z / (2.0 * n)) / (1.0 + z * z / n);
+    let half = z / (1.0 + z * z / n) * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt();
+    // At k = 0 and k = n the bounds are 0 and 1 exactly; rounding would leave 1e-18.
+    let lo = if k == 0 {
+        0.0
+    } else {
+        (centre - half).max(0.0)
+    };
+    let hi = if k as f64 == n {
+        1.0
+    } else {
+        (centre + half).min(1.0)
+    };
+    (lo, hi)
+}
+
+/// The largest slope `s` of `samples` (slope, stable) such that at least
+/// `ALLOWABLE_STABLE` of the samples with a slope at most `s` are stable, counting only
+/// slopes with at least `MIN_SAMPLES` samples at or below them. `None` when no slope is.
+#[must_use]
+pub fn allowable_slope(samples: &mut [(f64, bool)]) -> Option<f64> {
+    samples.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut stable = 0usize;
+    let mut best = None;
+    for (i, (slope, ok)) in samples.iter().enumerate() {
+        stable += usize::from(*ok);
+        let n = i + 1;
+        let last_of_slope = samples.get(n).is_none_or(|next| next.0 > *slope);
+        if last_of_slope && n >= MIN_SAMPLES && stable as f64 >= ALLOWABLE_STABLE * n as f64 {
+            best = Some(*slope);
+        }
+    }
+    best
+}
+
+/// The `q`-quantile of `values` (nearest rank), 0 for none.
+fn quantile(values: &mut [f64], q: f64) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.sort_by(f64::total_cmp);
+    let rank = ((q * values.len() as f64).ceil() as usize).clamp(1, values.len());
+    values[rank - 1]
+}
+
+/// A load column gathered over the file.
+struct Load {
+    name: &'static str,
+    unit: &'static str,
+    values: Vec<f64>,
+}
+
+/// The report of the sweep file at `path`, as Markdown.
+pub fn report(path: &Path) -> anyhow::Result<String> {
+    let format = format_of(path)?;
+    let (schema, batches) = open(path, format)?;
+    let meta = schema.metadata();
+    if meta.get("touchdown.kind").map(String::as_str) != Some("sweep") {
+        bail!("{} is not a sweep file of touchdown", path.display());
+    }
+    let legs = schema
+        .fields()
+        .iter()
+        .filter(|f| f.name().ends_with("_peak_normal_force_n"))
+        .count();
+    let names: Vec<&str> = crate::reference::Outcome::ALL
+        .iter()
+        .map(|o| o.name())
+        .collect();
+    let mut counts = vec![0u64; names.len()];
+    let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); (360.0 / SECTOR_DEG) as usize];
+    let mut loads = [
+        Load {
+            name: "peak CG acceleration",
+            unit: "m/s^2",
+            values: Vec::new(),
+        },
+        Load {
+            name: "peak acceleration along Z_B",
+            unit: "m/s^2",
+            values: Vec::new(),
+        },
+        Load {
+            name: "peak leg normal force (largest leg)",
+            unit: "N",
+            values: Vec::new(),
+        },
+        Load {
+            name: "damper stroke (longest leg)",
+            unit: "mm",
+            values: Vec::new(),
+        },
+        Load {
+            name: "energy absorbed by the dampers (all legs)",
+            unit: "J",
+            values: Vec::new(),
+        },
+    ];
+    for b in batches {
+        let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
+        let f = |name: &str| float_column(&b, name, path);
+        let outcome = b
+            .column_by_name("outcome")
+            .and_then(|c| c.as_any().downcast_ref::<StringArray>())
+            .ok_or_else(|| anyhow!("{}: no outcome column", path.display()))?;
+        let (slope, azimuth, yaw) = (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
+        let (acc, acc_z) = (
+            f("peak_acceleration_m_s2")?,
+            f("peak_acceleration_z_body_m_s2")?,
+        );
+        let per_leg = |what: &str| -> anyhow::Result<Vec<&Float64Array>> {
+            (0..legs).map(|k| f(&format!("leg{k}_{what}"))).collect()
+        };
+        let (force, stroke, energy) = (
+            per_leg("peak_normal_force_n")?,
+            per_leg("stroke_m")?,
+            per_leg("absorbed_j")?,
+        );
+        for i in 0..b.num_rows() {
+            let name = outcome.value(i);
+            let k = names
+                .iter()
+                .position(|n| *n == name)
+                .ok_or_else(|| anyhow!("{}: unknown outcome {name:?}", path.display()))?;
+            counts[k] += 1;
+            let relative = (azimuth.value(i) - yaw.value(i)).rem_euclid(360.0);
+            let sector = ((relative / SECTOR_DEG) as usize).min(sectors.len() - 1);
+            sectors[sector].push((slope.value(i), name == "stable"));
+            let max_of =
+                |cols: &[&Float64Array]| cols.iter().map(|c| c.value(i)).fold(0.0, f64::max);
+            loads[0].values.push(acc.value(i));
+            loads[1].values.push(acc_z.value(i));
+            loads[2].values.push(max_of(&force));
+            loads[3].values.push(1e3 * max_of(&stroke));
+            loads[4]
+                .values
+                .push(energy.iter().map(|c| c.value(i)).sum());
+        }
+    }
+    let total: u64 = counts.iter().sum();
+    if total == 0 {
+        bail!("{} holds no samples", path.display());
+    }
+
+    let mut t = String::new();
+    let _ = writeln!(t, "# touchdown report: {}\n", path.display());
+    let _ = writeln!(
+        t,
+        "{total} samples, seed {}, {}.\n",
+        meta.get("touchdown.seed").map_or("?", String::as_str),
+        meta.get("touchdown.engine").map_or("?", String::as_str)
+    );
+    let _ = writeln!(t, "## Outcomes\n");
+    let _ = writeln!(
+        t,
+        "| outcome | samples | share | 95 % interval |\n|---|---:|---:|---:|"
+    );
+    for (name, k) in names.iter().zip(&counts) {
+        let (lo, hi) = wilson_interval(*k, total);
+        let _ = writeln!(
+            t,
+            "| {name} | {k} | {:.2} % | {:.2} – {:.2} % |",
+            100.0 * *k as f64 / total as f64,
+            100.0 * lo,
+            100.0 * hi
+        );
+    }
+    let _ = writeln!(
+        t,
+        "\n## Allowable slope\n\nThe largest slope at or below which at least {:.0} % of the \
+         samples are stable, per sector of downhill azimuth relative to the lander \
+         (`downhill_azimuth_deg - yaw_deg`); only slopes with at least {MIN_SAMPLES} samples \
+         at or below them count.\n",
+        100.0 * ALLOWABLE_STABLE
+    );
+    let _ = writeln!(
+        t,
+        "| azimuth sector | samples | stable | allowable slope |\n|---|---:|---:|---:|"
+    );
+    for (k, s) in sectors.iter_mut().enumerate() {
+        let stable = s.iter().filter(|x| x.1).count();
+        let allowable = allowable_slope(s).map_or("none".to_string(), |a| format!("{a:.1} deg"));
+        let _ = writeln!(
+            t,
+            "| {:.0}–{:.0} deg | {} | {:.1} % | {allowable} |",
+            k as f64 * SECTOR_DEG,
+            (k + 1) as f64 * SECTOR_DEG,
+            s.len(),
+            100.0 * stable as f64 / s.len().max(1) as f64
+        );
+    }
+    let _ = writeln!(
+        t,
+        "\n## Peak loads\n\n| quantity | mean | 99th percentile | largest |\n|---|---:|---:|---:|"
+    );
+    for l in &mut loads {
+        let mean = l.values.iter().sum::<f64>() / l.values.len().max(1) as f64;
+        let p99 = quantile(&mut l.values, 0.99);
+        let max = l.values.last().copied().unwrap_or(0.0);
+        let _ = writeln!(
+            t,
+            "| {} ({}) | {mean:.4} | {p99:.4} | {max:.4} |",
+            l.name, l.unit
+        );
+    }
+    Ok(t)
+}
+
+/// A Float64 column of a batch, by name.
+fn float_column<'a>(
+    b: &'a RecordBatch,
+    name: &str,
+    path: &Path,
+) -> anyhow::Result<&'a Float64Array> {
+    b.column_by_name(name)
+        .and_then(|c| c.as_any().downcast_ref::<Float64Array>())
+        .ok_or_else(|| anyhow!("{}: no Float64 column {name}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wilson_interval_matches_known_values() {
+        // Wilson 95 % intervals computed by hand from the closed form.
+        let (lo, hi) = wilson_interval(50, 100);
+        assert!(
+            (lo - 0.4038).abs() < 1e-4 && (hi - 0.5962).abs() < 1e-4,
+            "{lo} {hi}"
+        );
+        let (lo, hi) = wilson_interval(0, 100);
+        assert!(lo == 0.0 && (hi - 0.0370).abs() < 1e-4, "{lo} {hi}");
+        let (lo, hi) = wilson_interval(100, 100);
+        assert!((lo - 0.9630).abs() < 1e-4 && hi == 1.0, "{lo} {hi}");
+    }
+
+    #[test]
+    fn allowable_slope_is_where_the_stable_share_falls_below_99_percent() {
+        // 1000 samples on slopes 0.0, 0.1, ..., 99.9: stable below 40 deg, none above. The
+        // share at or below s stays 1 up to 39.9; past 40 it is 400 / n, below 0.99 from
+        // n = 405 (s = 40.4) on; at s = 40.0..40.3 it is 400/401..400/404 >= 0.99.
+        let mut s: Vec<(f64, bool)> = (0..1000).map(|i| (f64::from(i) / 10.0, i < 400)).collect();
+        assert_eq!(allowable_slope(&mut s), Some(40.3));
+        // Fewer than MIN_SAMPLES at or below every slope: nothing allowable.
+        let mut few: Vec<(f64, bool)> = (0..50).map(|i| (f64::from(i), true)).collect();
+        assert_eq!(allowable_slope(&mut few), None);
+        // Everything unstable: nothing allowable.
+        let mut none: Vec<(f64, bool)> = (0..500).map(|i| (f64::from(i), false)).collect();
+        assert_eq!(allowable_slope(&mut none), None);
+    }
+}

@@ -1,0 +1,180 @@
+//! `touchdown report` on real sweeps: its outcome counts are the sweep's, and the allowable
+//! slope it finds for landers set down gently is the one the static tipping limit of
+//! MODEL.md section 8 gives for the same samples.
+
+use crate::common::{TempDir, touchdown};
+
+/// The default gear set down on the surface (attitude against the surface normal, no
+/// errors, released from rest 1 micrometre above it), friction high enough that nothing slides: whether it
+/// stands is decided by the static limit alone.
+const GENTLE: &str = r#"
+[surface]
+friction_coefficient = 1.5
+[inputs]
+slope_deg = { dist = "uniform", min = 20.0, max = 70.0 }
+downhill_azimuth_deg = { dist = "uniform", min = 0.0, max = 360.0 }
+release_height_m = 0.0
+velocity_error_x_m_s = 0.0
+velocity_error_y_m_s = 0.0
+velocity_error_z_m_s = 0.0
+roll_deg = 0.0
+pitch_deg = 0.0
+rate_x_deg_s = 0.0
+rate_y_deg_s = 0.0
+rate_z_deg_s = 0.0
+[initial]
+attitude_reference = "surface"
+# 1 micrometre above the surface: the gear meets it at 0.2 mm/s, set down, not dropped
+# (a drop of 1 mm already tips landers 1-2 deg below the static limit by the friction
+# impulse at the footpads).
+clearance_m = 1.0e-6
+[simulation]
+t_max_s = 60.0
+"#;
+
+/// `atan(r / h)` of the default gear (4 legs at 0.6 m, the first at 45 deg, CG 0.428936 m
+/// above the footpads) for a downhill azimuth relative to the lander, deg.
+fn static_limit_deg(azimuth_deg: f64) -> f64 {
+    // Edge normals at 0, 90, 180, 270 deg; the edge is R cos(45 deg) from the centre.
+    let off = (azimuth_deg.rem_euclid(90.0)).min(90.0 - azimuth_deg.rem_euclid(90.0));
+    let r = 0.6 * std::f64::consts::FRAC_PI_4.cos() / off.to_radians().cos();
+    (r / 0.428936).atan().to_degrees()
+}
+
+#[test]
+fn report_counts_and_allowable_slopes_of_gentle_landings() {
+    let dir = TempDir::new("report");
+    dir.write("gentle.toml", GENTLE);
+    let sweep = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--scenario",
+            "gentle.toml",
+            "--samples",
+            "4000",
+            "--quiet",
+            "--out",
+            "g.arrow",
+        ],
+    );
+    assert_eq!(sweep.code, Some(0), "{sweep}");
+    let run = touchdown(dir.path(), &["report", "g.arrow"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let report = run.stdout;
+
+    // The outcome rows carry the counts of the sweep's closing summary.
+    for line in sweep
+        .stdout
+        .lines()
+        .filter(|l| l.ends_with('%') && l.starts_with("  "))
+    {
+        let w: Vec<&str> = line.split_whitespace().collect();
+        let row = format!("| {} | {} |", w[0], w[1]);
+        assert!(
+            report.contains(&row),
+            "no row {row:?} in the report:\n{report}"
+        );
+    }
+
+    // Every sample stands or falls as the static limit says, away from the limit (within
+    // 0.5 deg of it the settling of the gear decides), ...
+    let (slopes, azimuths, stable) = read_samples(&dir.join("g.arrow"));
+    let mut wrong = Vec::new();
+    for ((slope, azimuth), stable) in slopes.iter().zip(&azimuths).zip(&stable) {
+        let limit = static_limit_deg(*azimuth);
+        if (slope - limit).abs() > 0.5 && (*slope < limit) != *stable {
+            wrong.push(format!(
+                "slope {slope:.2} at {azimuth:.1} deg (limit {limit:.2}): stable {stable}"
+            ));
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} samples against the static limit:\n{}",
+        wrong.len(),
+        wrong.join("\n")
+    );
+
+    // ... and the report's allowable slope per sector is the one the static limit gives
+    // for the same samples, to the slope spacing of the samples (~0.1 deg) and the 0.5 deg
+    // band at the limit.
+    let mut sectors = 0;
+    for line in report
+        .lines()
+        .filter(|l| l.contains("–") && l.ends_with(" deg |"))
+    {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        let from: f64 = cells[1].split('–').next().unwrap().parse().unwrap();
+        let allowable: f64 = cells[4]
+            .trim_end_matches(" deg")
+            .parse()
+            .unwrap_or_else(|_| {
+                panic!("no allowable slope in {line:?}:\n{report}");
+            });
+        let mut predicted: Vec<(f64, bool)> = slopes
+            .iter()
+            .zip(&azimuths)
+            .filter(|(_, a)| (from..from + 45.0).contains(*a))
+            .map(|(s, a)| (*s, *s < static_limit_deg(*a)))
+            .collect();
+        let expected = touchdown::report::allowable_slope(&mut predicted).unwrap();
+        assert!(
+            (allowable - expected).abs() <= 0.6,
+            "sector from {from} deg: allowable {allowable} deg, the static limit gives {expected:.2} deg"
+        );
+        sectors += 1;
+    }
+    assert_eq!(sectors, 8, "eight sectors in:\n{report}");
+}
+
+/// Slope, downhill azimuth relative to the lander, and whether it ended stable, per sample.
+fn read_samples(path: &std::path::Path) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
+    use arrow_array::{Array, Float64Array, StringArray};
+    let reader =
+        arrow_ipc::reader::FileReader::try_new(std::fs::File::open(path).unwrap(), None).unwrap();
+    let (mut slopes, mut azimuths, mut stable) = (Vec::new(), Vec::new(), Vec::new());
+    for b in reader {
+        let b = b.unwrap();
+        let f = |name: &str| {
+            b.column_by_name(name)
+                .unwrap()
+                .as_any()
+                .downcast_ref::<Float64Array>()
+                .unwrap()
+                .clone()
+        };
+        let (slope, azimuth, yaw) = (f("slope_deg"), f("downhill_azimuth_deg"), f("yaw_deg"));
+        let outcome = b.column_by_name("outcome").unwrap();
+        let outcome = outcome.as_any().downcast_ref::<StringArray>().unwrap();
+        for i in 0..b.num_rows() {
+            slopes.push(slope.value(i));
+            azimuths.push((azimuth.value(i) - yaw.value(i)).rem_euclid(360.0));
+            stable.push(outcome.value(i) == "stable");
+        }
+    }
+    (slopes, azimuths, stable)
+}
+
+#[test]
+fn report_refuses_what_is_not_a_sweep() {
+    let dir = TempDir::new("report-bad");
+    dir.write("s.toml", "[simulation]\nt_max_s = 5.0\n");
+    let t = touchdown(
+        dir.path(),
+        &["trace", "--scenario", "s.toml", "--out", "t.arrow"],
+    );
+    assert_eq!(t.code, Some(0), "{t}");
+    for (args, expect) in [
+        (vec!["report", "t.arrow"], "t.arrow is not a sweep file"),
+        (
+            vec!["report", "s.toml"],
+            "s.toml is neither an Arrow IPC file nor a Parquet file",
+        ),
+        (vec!["report", "missing.arrow"], "missing.arrow"),
+    ] {
+        let run = touchdown(dir.path(), &args);
+        assert_eq!(run.code, Some(2), "{run}");
+        assert!(run.stderr.contains(expect), "{run}");
+    }
+}
