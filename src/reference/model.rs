@@ -2,7 +2,7 @@
 //! sample fixes (`Surface`, the slope plane and terrain tile it lands on).
 
 use crate::sampling::Sample;
-use crate::scenario::{Geometry, PSI_PA, Scenario, StrutAxes};
+use crate::scenario::{PSI_PA, Scenario, StrutAxes};
 use glam::{DQuat, DVec3};
 use kernels::terrain::Terrain;
 
@@ -83,25 +83,12 @@ impl Model {
     /// Derives the model of a validated scenario (terrain tiles included).
     #[must_use]
     pub fn new(s: &Scenario) -> Model {
-        let tips: Vec<DVec3> = match &s.lander.geometry {
-            Geometry::Regular {
-                legs,
-                footpad_radius_m,
-                cg_height_m,
-                first_leg_azimuth_deg,
-            } => (0..*legs)
-                .map(|i| {
-                    let az = first_leg_azimuth_deg.to_radians()
-                        + std::f64::consts::TAU * i as f64 / *legs as f64;
-                    DVec3::new(
-                        footpad_radius_m * az.cos(),
-                        footpad_radius_m * az.sin(),
-                        -cg_height_m,
-                    )
-                })
-                .collect(),
-            Geometry::Tips(t) => t.iter().map(|p| DVec3::from_array(*p)).collect(),
-        };
+        let tips: Vec<DVec3> = s
+            .lander
+            .tips_m()
+            .into_iter()
+            .map(DVec3::from_array)
+            .collect();
         let axes: Vec<DVec3> = match &s.damper.strut_axes {
             StrutAxes::All(a) => vec![DVec3::from_array(*a); tips.len()],
             StrutAxes::PerLeg(a) => a.iter().map(|p| DVec3::from_array(*p)).collect(),

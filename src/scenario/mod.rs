@@ -204,6 +204,32 @@ pub struct Lander {
     pub geometry: Geometry,
 }
 
+impl Lander {
+    /// The footpads in B (CG at the origin) with the dampers uncrushed, m.
+    #[must_use]
+    pub fn tips_m(&self) -> Vec<[f64; 3]> {
+        match &self.geometry {
+            Geometry::Regular {
+                legs,
+                footpad_radius_m,
+                cg_height_m,
+                first_leg_azimuth_deg,
+            } => (0..*legs)
+                .map(|i| {
+                    let az = first_leg_azimuth_deg.to_radians()
+                        + std::f64::consts::TAU * i as f64 / *legs as f64;
+                    [
+                        footpad_radius_m * az.cos(),
+                        footpad_radius_m * az.sin(),
+                        -cg_height_m,
+                    ]
+                })
+                .collect(),
+            Geometry::Tips(t) => t.clone(),
+        }
+    }
+}
+
 /// Gaussian-smoothed random terrain (MODEL.md section 4).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Roughness {
