@@ -34,6 +34,10 @@ pub enum Command {
     /// Join the shard files of one sweep (`sweep --shard K/N`) into the file the sweep
     /// writes when run in one process.
     Merge(MergeArgs),
+    /// Draw PNG pictures of a sweep file (stability map, tipped share per slope, load
+    /// distributions) or of a trace file (CG and leg time histories, 3D path, shock along
+    /// Z_B).
+    Plot(PlotArgs),
 }
 
 /// Flags of `touchdown sweep`.
@@ -81,6 +85,18 @@ pub struct ReportArgs {
     /// The sweep file (Arrow IPC or Parquet).
     #[arg(value_name = "SWEEP")]
     pub sweep: PathBuf,
+}
+
+/// Flags of `touchdown plot`.
+#[derive(clap::Args, Debug)]
+pub struct PlotArgs {
+    /// A sweep file (Arrow IPC or Parquet) or a trace file (Arrow IPC).
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// Folder to write the PNG files into (default: the file's folder); they are named
+    /// after the file, e.g. `sweep-stability-map.png`.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
 }
 
 /// Flags of `touchdown merge`.
@@ -168,6 +184,12 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Sweep(args) => run_sweep(&args),
         Command::Report(args) => {
             print_out(&crate::report::report(&args.sweep)?);
+            Ok(())
+        }
+        Command::Plot(args) => {
+            for p in crate::plot::plot(&args.file, args.out_dir.as_deref())? {
+                print_out(&format!("wrote {}\n", p.display()));
+            }
             Ok(())
         }
         Command::Merge(args) => {

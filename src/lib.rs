@@ -5,9 +5,11 @@
 
 pub mod cli;
 pub mod output;
+pub mod plot;
 pub mod reference;
 pub mod report;
 pub mod sampling;
 pub mod scenario;
+pub mod stability;
 pub mod sweep;
 pub mod terrain;

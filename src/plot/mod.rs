@@ -1,0 +1,284 @@
+//! `touchdown plot`: PNG pictures of a sweep file (stability map, tipped share per slope,
+//! load distributions) or of a trace file (CG and leg time histories, 3D path, the
+//! instruments' shock). Pure Rust: `plotters` on a bitmap, with DejaVu Sans compiled in, so
+//! no system fonts, no Python.
+
+mod sweep;
+mod trace;
+
+use crate::output::AtomicFile;
+use crate::output::read::{format_of, open};
+use anyhow::{anyhow, bail};
+use arrow_array::cast::AsArray;
+use arrow_array::types::Float64Type;
+use arrow_schema::DataType;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+/// The font family every picture uses (registered from the embedded DejaVu Sans).
+const FONT: &str = "sans-serif";
+
+/// A drawing area of a picture being drawn.
+type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
+
+/// Colours of the outcomes, in the order of `Outcome::ALL` (stable, tipped, sliding,
+/// bouncing, diverged): green, red, orange, blue, black.
+const OUTCOME_COLOURS: [RGBColor; 5] = [
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(255, 127, 14),
+    RGBColor(31, 119, 180),
+    RGBColor(0, 0, 0),
+];
+
+/// Line colours of the series of one panel (x, y, z; or legs 0, 1, ...).
+const SERIES_COLOURS: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+];
+
+/// Registers the embedded font once per process.
+fn register_font() -> anyhow::Result<()> {
+    static DONE: OnceLock<bool> = OnceLock::new();
+    let ok = *DONE.get_or_init(|| {
+        plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular()).is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        bail!("cannot load the embedded DejaVu Sans font")
+    }
+}
+
+/// Draws a `width` x `height` picture with `draw` and writes it to `path` as PNG (under a
+/// temporary name until it is complete).
+fn save_png(
+    path: &Path,
+    (width, height): (u32, u32),
+    draw: impl FnOnce(&Area<'_>) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
+    register_font()?;
+    let mut pixels = vec![0u8; width as usize * height as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        draw(&root)?;
+        root.present().map_err(drawing)?;
+    }
+    let (file, mut out) = AtomicFile::create(path)?;
+    use image::ImageEncoder as _;
+    image::codecs::png::PngEncoder::new_with_quality(
+        &mut out,
+        image::codecs::png::CompressionType::Best,
+        image::codecs::png::FilterType::Adaptive,
+    )
+    .write_image(&pixels, width, height, image::ColorType::Rgb8)
+    .map_err(|e| anyhow!("cannot write {}: {e}", file.partial_path().display()))?;
+    file.commit(out)
+}
+
+/// A drawing error as an `anyhow` error.
+fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
+    anyhow!("cannot draw the picture: {e}")
+}
+
+/// Columns of a touchdown file, as `f64`, with the schema metadata and the outcome
+/// column when the file has one.
+struct Table {
+    meta: HashMap<String, String>,
+    columns: HashMap<String, Vec<f64>>,
+    outcome: Vec<String>,
+    rows: usize,
+}
+
+impl Table {
+    /// Reads the numeric columns `wanted` keeps (and the outcome column) of the file at
+    /// `path`; also returns the file's kind (`sweep` or `trace`).
+    fn read(path: &Path, wanted: impl Fn(&str) -> bool) -> anyhow::Result<Table> {
+        let format = format_of(path)?;
+        let (schema, batches) = open(path, format)?;
+        let meta: HashMap<String, String> = schema
+            .metadata()
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        let mut columns: HashMap<String, Vec<f64>> = HashMap::new();
+        let mut outcome = Vec::new();
+        let mut rows = 0;
+        for b in batches {
+            let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
+            rows += b.num_rows();
+            for (field, array) in b.schema().fields().iter().zip(b.columns()) {
+                let name = field.name();
+                if name == "outcome" {
+                    let s = array.as_string_opt::<i32>().ok_or_else(|| {
+                        anyhow!("{}: the outcome column is not text", path.display())
+                    })?;
+                    outcome.extend(s.iter().map(|v| v.unwrap_or("").to_string()));
+                    continue;
+                }
+                if !wanted(name) {
+                    continue;
+                }
+                let values: Vec<f64> = match array.data_type() {
+                    DataType::Float64 => array
+                        .as_primitive::<Float64Type>()
+                        .iter()
+                        .map(|v| v.unwrap_or(f64::NAN))
+                        .collect(),
+                    _ => continue,
+                };
+                columns.entry(name.clone()).or_default().extend(values);
+            }
+        }
+        Ok(Table {
+            meta,
+            columns,
+            outcome,
+            rows,
+        })
+    }
+
+    /// A column by name, or an error naming the file and the column.
+    fn column(&self, name: &str, path: &Path) -> anyhow::Result<&[f64]> {
+        self.columns
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| anyhow!("{}: no Float64 column {name}", path.display()))
+    }
+
+    /// The legs of the lander, from the per-leg columns that `suffix` ends.
+    fn legs(&self, suffix: &str) -> usize {
+        (0..)
+            .take_while(|k| self.columns.contains_key(&format!("leg{k}_{suffix}")))
+            .count()
+    }
+}
+
+/// Writes the pictures of the sweep or trace file at `path` into `out_dir` (default: the
+/// file's folder), named after the file; returns their paths.
+pub fn plot(path: &Path, out_dir: Option<&Path>) -> anyhow::Result<Vec<PathBuf>> {
+    let stem = path
+        .file_stem()
+        .ok_or_else(|| anyhow!("{} names no file", path.display()))?
+        .to_string_lossy()
+        .into_owned();
+    let dir = match out_dir {
+        Some(d) => d.to_path_buf(),
+        None => match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        },
+    };
+    if !dir.is_dir() {
+        bail!("output folder {} does not exist", dir.display());
+    }
+    let name = |what: &str| dir.join(format!("{stem}-{what}.png"));
+    let format = format_of(path)?;
+    let (schema, _) = open(path, format)?;
+    match schema.metadata().get("touchdown.kind").map(String::as_str) {
+        Some("sweep") => sweep::plot(path, &name),
+        Some("trace") => trace::plot(path, &name),
+        _ => bail!(
+            "{} is neither a sweep nor a trace file of touchdown",
+            path.display()
+        ),
+    }
+}
+
+/// A series of one panel: its legend label, colour and points.
+struct Line {
+    label: String,
+    colour: RGBColor,
+    points: Vec<(f64, f64)>,
+}
+
+/// The range of `values` (finite ones), widened by `pad` of its length on each side; a
+/// constant (or empty) one becomes its value plus or minus 1.
+fn span(values: impl Iterator<Item = f64>, pad: f64) -> std::ops::Range<f64> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if lo > hi {
+        return -1.0..1.0;
+    }
+    if hi - lo <= 1e-9 * hi.abs().max(1.0) {
+        return lo - 1.0..hi + 1.0;
+    }
+    let p = pad * (hi - lo);
+    lo - p..hi + p
+}
+
+/// Draws `lines` against a shared x axis in `area`, with a caption, axis labels and legend.
+fn line_panel(
+    area: &Area<'_>,
+    caption: &str,
+    (x_desc, y_desc): (&str, &str),
+    x_range: std::ops::Range<f64>,
+    lines: &[Line],
+) -> anyhow::Result<()> {
+    let y_range = span(
+        lines.iter().flat_map(|l| l.points.iter().map(|p| p.1)),
+        0.05,
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FONT, 18))
+        .margin(8)
+        .x_label_area_size(38)
+        .y_label_area_size(78)
+        .build_cartesian_2d(x_range, y_range)
+        .map_err(drawing)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style((FONT, 13))
+        .axis_desc_style((FONT, 15))
+        .light_line_style(RGBColor(238, 238, 238))
+        .draw()
+        .map_err(drawing)?;
+    for l in lines {
+        let colour = l.colour;
+        chart
+            .draw_series(LineSeries::new(
+                l.points.iter().copied(),
+                colour.stroke_width(2),
+            ))
+            .map_err(drawing)?
+            .label(l.label.as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+            });
+    }
+    legend(&mut chart, SeriesLabelPosition::UpperRight)
+}
+
+/// A 2D chart of a picture.
+type Chart2d<'a, 'b> = ChartContext<
+    'a,
+    BitMapBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// Draws the legend of `chart` at `position`, on a light box.
+fn legend<'a>(chart: &mut Chart2d<'a, 'a>, position: SeriesLabelPosition) -> anyhow::Result<()> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.9))
+        .border_style(RGBColor(160, 160, 160))
+        .label_font((FONT, 14))
+        .draw()
+        .map_err(drawing)
+}

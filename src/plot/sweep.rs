@@ -1,0 +1,463 @@
+//! Pictures of a sweep file: the stability map, the tipped share per slope bin, and the
+//! distributions of peak CG acceleration and damper stroke.
+
+use super::{Area, FONT, OUTCOME_COLOURS, Table, drawing, legend, save_png, span};
+use crate::reference::Outcome;
+use crate::report::{SECTOR_DEG, allowable_slope, wilson_interval};
+use crate::scenario::Scenario;
+use crate::stability::static_limit_deg;
+use anyhow::anyhow;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// The sweep's columns the pictures use.
+struct Sweep {
+    /// Downhill azimuth relative to the lander, `downhill_azimuth_deg - yaw_deg` in
+    /// [0, 360), deg.
+    relative_azimuth: Vec<f64>,
+    slope: Vec<f64>,
+    /// Index into `Outcome::ALL`.
+    outcome: Vec<usize>,
+    peak_acceleration: Vec<f64>,
+    /// The longest final damper stroke of the sample's legs, mm.
+    stroke_mm: Vec<f64>,
+    /// Footpads in B, from the scenario in the file (none if it does not read).
+    tips_m: Option<Vec<[f64; 3]>>,
+    /// "N samples, seed S", for the captions.
+    about: String,
+}
+
+impl Sweep {
+    fn read(path: &Path) -> anyhow::Result<Sweep> {
+        let t = Table::read(path, |n| {
+            matches!(
+                n,
+                "slope_deg" | "downhill_azimuth_deg" | "yaw_deg" | "peak_acceleration_m_s2"
+            ) || n.ends_with("_stroke_m")
+        })?;
+        if t.rows == 0 {
+            anyhow::bail!("{} holds no samples", path.display());
+        }
+        let names: Vec<&str> = Outcome::ALL.iter().map(|o| o.name()).collect();
+        let outcome = t
+            .outcome
+            .iter()
+            .map(|o| {
+                names
+                    .iter()
+                    .position(|n| n == o)
+                    .ok_or_else(|| anyhow!("{}: unknown outcome {o:?}", path.display()))
+            })
+            .collect::<anyhow::Result<Vec<usize>>>()?;
+        let (azimuth, yaw) = (
+            t.column("downhill_azimuth_deg", path)?,
+            t.column("yaw_deg", path)?,
+        );
+        let legs = t.legs("stroke_m");
+        let strokes: Vec<&[f64]> = (0..legs)
+            .map(|k| t.column(&format!("leg{k}_stroke_m"), path))
+            .collect::<anyhow::Result<_>>()?;
+        let tips_m = t
+            .meta
+            .get("touchdown.scenario")
+            .and_then(|s| Scenario::from_toml(s).ok())
+            .map(|s| s.lander.tips_m());
+        Ok(Sweep {
+            relative_azimuth: azimuth
+                .iter()
+                .zip(yaw)
+                .map(|(a, y)| (a - y).rem_euclid(360.0))
+                .collect(),
+            slope: t.column("slope_deg", path)?.to_vec(),
+            outcome,
+            peak_acceleration: t.column("peak_acceleration_m_s2", path)?.to_vec(),
+            stroke_mm: (0..t.rows)
+                .map(|i| 1e3 * strokes.iter().map(|s| s[i]).fold(0.0, f64::max))
+                .collect(),
+            tips_m,
+            about: format!(
+                "{} samples, seed {}",
+                t.rows,
+                t.meta.get("touchdown.seed").map_or("?", String::as_str)
+            ),
+        })
+    }
+
+    /// The static limit at each relative azimuth 0, 0.5, ... 360 deg.
+    fn limit_curve(&self) -> Vec<(f64, f64)> {
+        let Some(tips) = &self.tips_m else {
+            return Vec::new();
+        };
+        (0..=720)
+            .filter_map(|i| {
+                let phi = 0.5 * f64::from(i);
+                static_limit_deg(tips, phi).map(|s| (phi, s))
+            })
+            .collect()
+    }
+}
+
+/// Writes the sweep's pictures, named by `name`; returns their paths.
+pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Result<Vec<PathBuf>> {
+    let s = Sweep::read(path)?;
+    let limit = s.limit_curve();
+    let mut written = Vec::new();
+
+    let map = name("stability-map");
+    save_png(&map, (1000, 680), |root| stability_map(root, &s, &limit))?;
+    written.push(map);
+
+    let tipped = name("tipped-by-slope");
+    save_png(&tipped, (1000, 620), |root| {
+        tipped_by_slope(root, &s, &limit)
+    })?;
+    written.push(tipped);
+
+    let loads = name("loads");
+    save_png(&loads, (1200, 520), |root| {
+        let panels = root.split_evenly((1, 2));
+        histogram(
+            &panels[0],
+            &format!("peak CG acceleration ({})", s.about),
+            "peak CG acceleration (m/s²)",
+            &s.peak_acceleration,
+        )?;
+        histogram(
+            &panels[1],
+            "damper stroke, longest leg of each sample",
+            "final damper stroke (mm)",
+            &s.stroke_mm,
+        )
+    })?;
+    written.push(loads);
+    Ok(written)
+}
+
+/// Slope against relative downhill azimuth, a dot per sample coloured by its outcome (in
+/// sample order, so no outcome hides the others), with the static limit and the allowable
+/// slope of each azimuth sector over it.
+fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Result<()> {
+    let top = s
+        .slope
+        .iter()
+        .chain(limit.iter().map(|p| &p.1))
+        .fold(0.0f64, |m, v| m.max(*v));
+    let y_max = (top / 5.0).ceil().max(1.0) * 5.0;
+    let mut chart = ChartBuilder::on(root)
+        .caption(format!("Stability map: {}", s.about), (FONT, 22))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..360.0, 0.0..y_max)
+        .map_err(drawing)?;
+    chart
+        .configure_mesh()
+        .x_desc("downhill azimuth relative to the lander, from X_B (deg)")
+        .y_desc("slope (deg)")
+        .x_labels(9)
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .label_style((FONT, 14))
+        .axis_desc_style((FONT, 16))
+        .light_line_style(RGBColor(238, 238, 238))
+        .draw()
+        .map_err(drawing)?;
+    // Bigger dots for fewer samples; single pixels when they would cover the map anyway.
+    let radius = match s.slope.len() {
+        0..=2_000 => 3,
+        2_001..=50_000 => 2,
+        _ => 0,
+    };
+    let dots = s
+        .relative_azimuth
+        .iter()
+        .zip(&s.slope)
+        .zip(&s.outcome)
+        .map(|((a, sl), o)| ((*a, *sl), OUTCOME_COLOURS[*o]));
+    if radius == 0 {
+        chart
+            .draw_series(dots.map(|(p, c)| Pixel::new(p, c)))
+            .map_err(drawing)?;
+    } else {
+        chart
+            .draw_series(dots.map(|(p, c)| Circle::new(p, radius, c.filled())))
+            .map_err(drawing)?;
+    }
+    // The legend: one entry per outcome present, with its count.
+    for (k, outcome) in Outcome::ALL.iter().enumerate() {
+        let n = s.outcome.iter().filter(|o| **o == k).count();
+        if n == 0 {
+            continue;
+        }
+        let c = OUTCOME_COLOURS[k];
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(drawing)?
+            .label(format!("{} ({n})", outcome.name()))
+            .legend(move |(x, y)| Circle::new((x + 8, y), 5, c.filled()));
+    }
+    // The allowable slope of each sector, as `touchdown report` finds it.
+    let purple = RGBColor(110, 0, 150);
+    let sectors = (360.0 / SECTOR_DEG) as usize;
+    let mut per_sector: Vec<Vec<(f64, bool)>> = vec![Vec::new(); sectors];
+    for ((a, sl), o) in s.relative_azimuth.iter().zip(&s.slope).zip(&s.outcome) {
+        let k = ((a / SECTOR_DEG) as usize).min(sectors - 1);
+        per_sector[k].push((*sl, Outcome::ALL[*o] == Outcome::Stable));
+    }
+    let mut any = false;
+    for (k, samples) in per_sector.iter_mut().enumerate() {
+        if let Some(allowable) = allowable_slope(samples) {
+            let x0 = k as f64 * SECTOR_DEG;
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(x0, allowable), (x0 + SECTOR_DEG, allowable)],
+                    10,
+                    5,
+                    purple.stroke_width(4),
+                ))
+                .map_err(drawing)?;
+            any = true;
+        }
+    }
+    if any {
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+            .map_err(drawing)?
+            .label("allowable slope per sector (>= 99 % stable)")
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], purple.stroke_width(4))
+            });
+    }
+    if !limit.is_empty() {
+        chart
+            .draw_series(LineSeries::new(
+                limit.iter().copied(),
+                BLACK.stroke_width(3),
+            ))
+            .map_err(drawing)?
+            .label("static tipping limit atan(r/h)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(3)));
+    }
+    legend(&mut chart, SeriesLabelPosition::UpperRight)
+}
+
+/// A round bin width near `span / 18`: 1, 2, 2.5 or 5 times a power of ten.
+fn bin_width(span: f64) -> f64 {
+    let raw = (span / 18.0).max(1e-6);
+    let decade = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 2.5, 5.0, 10.0]
+        .iter()
+        .map(|m| m * decade)
+        .find(|w| *w >= raw)
+        .unwrap_or(10.0 * decade)
+}
+
+/// Share of tipped and of stable samples per slope bin, with 95 % Wilson intervals, and
+/// the range of the static limit over azimuth.
+fn tipped_by_slope(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Result<()> {
+    let range = span(s.slope.iter().copied(), 0.0);
+    let width = bin_width(range.end - range.start);
+    let first = (range.start / width).floor() * width;
+    let bins = (((range.end - first) / width).floor() as usize + 1).max(1);
+    let mut n = vec![0u64; bins];
+    let mut tipped = vec![0u64; bins];
+    let mut stable = vec![0u64; bins];
+    for (sl, o) in s.slope.iter().zip(&s.outcome) {
+        let b = (((sl - first) / width).floor().max(0.0) as usize).min(bins - 1);
+        n[b] += 1;
+        tipped[b] += u64::from(Outcome::ALL[*o] == Outcome::Tipped);
+        stable[b] += u64::from(Outcome::ALL[*o] == Outcome::Stable);
+    }
+    let (lim_lo, lim_hi) = limit.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
+        (lo.min(p.1), hi.max(p.1))
+    });
+    let x_end =
+        (first + bins as f64 * width).max(if limit.is_empty() { 0.0 } else { lim_hi + 1.0 });
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!(
+                "Tipped and stable share per {width} deg slope bin: {}",
+                s.about
+            ),
+            (FONT, 20),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(first..x_end, 0.0..1.0)
+        .map_err(drawing)?;
+    chart
+        .configure_mesh()
+        .x_desc("slope (deg)")
+        .y_desc("share of the samples in the bin (95 % interval)")
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .label_style((FONT, 14))
+        .axis_desc_style((FONT, 16))
+        .light_line_style(RGBColor(238, 238, 238))
+        .draw()
+        .map_err(drawing)?;
+    let tipped_colour = OUTCOME_COLOURS[1];
+    let stable_colour = OUTCOME_COLOURS[0];
+    for (counts, colour, label, shift) in [
+        (&tipped, tipped_colour, "tipped", -0.08),
+        (&stable, stable_colour, "stable", 0.08),
+    ] {
+        let points: Vec<(f64, f64, f64, f64)> = (0..bins)
+            .filter(|b| n[*b] > 0)
+            .map(|b| {
+                let (lo, hi) = wilson_interval(counts[b], n[b]);
+                let x = first + (b as f64 + 0.5 + shift) * width;
+                (x, lo, counts[b] as f64 / n[b] as f64, hi)
+            })
+            .collect();
+        chart
+            .draw_series(points.iter().map(|(x, lo, p, hi)| {
+                ErrorBar::new_vertical(*x, *lo, *p, *hi, colour.stroke_width(2), 8)
+            }))
+            .map_err(drawing)?;
+        chart
+            .draw_series(LineSeries::new(
+                points.iter().map(|(x, _, p, _)| (*x, *p)),
+                colour.stroke_width(2),
+            ))
+            .map_err(drawing)?
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+            });
+    }
+    if !limit.is_empty() {
+        // The least and the largest static limit over azimuth (side and leg downhill, on
+        // a regular gear).
+        let grey = RGBColor(90, 90, 90);
+        for x in [lim_lo, lim_hi] {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(x, 0.0), (x, 1.0)],
+                    8,
+                    5,
+                    grey.stroke_width(2),
+                ))
+                .map_err(drawing)?;
+        }
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+            .map_err(drawing)?
+            .label(format!(
+                "static tipping limit over azimuth: {lim_lo:.1} to {lim_hi:.1} deg"
+            ))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(2))
+            });
+    }
+    legend(&mut chart, SeriesLabelPosition::MiddleLeft)
+}
+
+/// The `q`-quantile of `values` (nearest rank).
+fn quantile(values: &[f64], q: f64) -> f64 {
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    if v.is_empty() {
+        return 0.0;
+    }
+    v.sort_by(f64::total_cmp);
+    let rank = ((q * v.len() as f64).ceil() as usize).clamp(1, v.len());
+    v[rank - 1]
+}
+
+/// A histogram of `values` in 40 bins from 0; past 3 times the 99.9th percentile the
+/// tail is counted in the caption instead, so that a few outliers do not flatten it.
+fn histogram(area: &Area<'_>, caption: &str, x_desc: &str, values: &[f64]) -> anyhow::Result<()> {
+    let max = values
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, f64::max);
+    let p999 = quantile(values, 0.999);
+    let top = if max > 3.0 * p999 && p999 > 0.0 {
+        p999
+    } else {
+        max
+    };
+    let mut builder = ChartBuilder::on(area);
+    let chart = builder
+        .caption(caption, (FONT, 17))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70);
+    if top <= 0.0 {
+        // Nothing to bin (a sweep without dampers strokes nothing).
+        let mut c = chart
+            .build_cartesian_2d(0.0..1.0, 0.0..1.0)
+            .map_err(drawing)?;
+        c.configure_mesh()
+            .disable_mesh()
+            .x_desc(x_desc)
+            .y_desc("samples")
+            .label_style((FONT, 13))
+            .axis_desc_style((FONT, 15))
+            .draw()
+            .map_err(drawing)?;
+        c.draw_series(std::iter::once(Text::new(
+            format!("all {} samples at 0", values.len()),
+            (0.3, 0.5),
+            (FONT, 18),
+        )))
+        .map_err(drawing)?;
+        return Ok(());
+    }
+    let bins = 40usize;
+    let width = top / bins as f64;
+    let mut counts = vec![0u64; bins];
+    let mut beyond = 0u64;
+    for v in values.iter().filter(|v| v.is_finite()) {
+        let b = (v / width).floor() as usize;
+        if b < bins {
+            counts[b] += 1;
+        } else if *v <= top {
+            counts[bins - 1] += 1;
+        } else {
+            beyond += 1;
+        }
+    }
+    let highest = counts.iter().copied().max().unwrap_or(1).max(1) as f64;
+    let x_desc = if beyond > 0 {
+        format!("{x_desc}; {beyond} samples beyond, up to {max:.3}")
+    } else {
+        x_desc.to_string()
+    };
+    let mut c = chart
+        .build_cartesian_2d(0.0..top, 0.0..highest * 1.08)
+        .map_err(drawing)?;
+    c.configure_mesh()
+        .x_desc(x_desc)
+        .y_desc("samples")
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .label_style((FONT, 13))
+        .axis_desc_style((FONT, 15))
+        .light_line_style(RGBColor(238, 238, 238))
+        .draw()
+        .map_err(drawing)?;
+    let colour = RGBColor(31, 119, 180);
+    c.draw_series(counts.iter().enumerate().map(|(b, n)| {
+        let x0 = b as f64 * width;
+        Rectangle::new(
+            [(x0, 0.0), (x0 + width, *n as f64)],
+            colour.mix(0.8).filled(),
+        )
+    }))
+    .map_err(drawing)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bin_widths_are_round() {
+        assert_eq!(bin_width(45.0), 2.5);
+        assert_eq!(bin_width(60.0), 5.0);
+        assert_eq!(bin_width(18.0), 1.0);
+        assert_eq!(bin_width(9.0), 0.5);
+    }
+}

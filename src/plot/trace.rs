@@ -1,0 +1,440 @@
+//! Pictures of a trace file: CG position, velocity, acceleration and attitude; per leg
+//! penetration, normal force, friction force and stroke; the 3D path of the CG and the
+//! footpads over the slope; the acceleration along Z_B (the instruments' shock).
+
+use super::{Area, FONT, Line, SERIES_COLOURS, Table, drawing, line_panel, save_png, span};
+use anyhow::anyhow;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// Time axis label of every panel.
+const TIME: &str = "time (s)";
+
+/// A trace, with what its captions say.
+struct Trace {
+    t: Table,
+    time: Vec<f64>,
+    legs: usize,
+    /// Unit normal of the slope plane, in I.
+    normal: [f64; 3],
+    /// "sample N: OUTCOME at T s", for the captions.
+    about: String,
+}
+
+impl Trace {
+    fn read(path: &Path) -> anyhow::Result<Trace> {
+        let t = Table::read(path, |_| true)?;
+        if t.rows == 0 {
+            anyhow::bail!("{} holds no steps", path.display());
+        }
+        let time = t.column("t_s", path)?.to_vec();
+        let legs = t.legs("normal_force_n");
+        let input = |name: &str| -> anyhow::Result<f64> {
+            t.meta
+                .get(&format!("touchdown.input.{name}"))
+                .and_then(|v| v.parse().ok())
+                .ok_or_else(|| anyhow!("{}: no input {name} in its metadata", path.display()))
+        };
+        let (sa, ca) = input("slope_deg")?.to_radians().sin_cos();
+        let (sb, cb) = input("downhill_azimuth_deg")?.to_radians().sin_cos();
+        let meta = |k: &str| t.meta.get(k).map_or("?", String::as_str).to_string();
+        let decided = t
+            .meta
+            .get("touchdown.decided_s")
+            .and_then(|v| v.parse::<f64>().ok())
+            .map_or("?".to_string(), |v| format!("{v:.3}"));
+        let about = format!(
+            "sample {}: {} at {decided} s",
+            meta("touchdown.sample"),
+            meta("touchdown.outcome"),
+        );
+        Ok(Trace {
+            time,
+            legs,
+            normal: [sa * cb, sa * sb, ca],
+            about,
+            t,
+        })
+    }
+
+    /// Column `name` against time, as a line labelled `label` in colour `k`, scaled by
+    /// `scale`.
+    fn line(&self, name: &str, label: &str, k: usize, scale: f64) -> anyhow::Result<Line> {
+        let y = self
+            .t
+            .columns
+            .get(name)
+            .ok_or_else(|| anyhow!("the trace has no column {name}"))?;
+        Ok(Line {
+            label: label.to_string(),
+            colour: SERIES_COLOURS[k % SERIES_COLOURS.len()],
+            points: self
+                .time
+                .iter()
+                .copied()
+                .zip(y.iter().map(|v| v * scale))
+                .collect(),
+        })
+    }
+
+    /// Column `what` of every leg against time, scaled by `scale`.
+    fn per_leg(&self, what: &str, scale: f64) -> anyhow::Result<Vec<Line>> {
+        (0..self.legs)
+            .map(|k| self.line(&format!("leg{k}_{what}"), &format!("leg {k}"), k, scale))
+            .collect()
+    }
+
+    /// The tilt of Z_B from the slope normal against time, deg.
+    fn tilt(&self) -> anyhow::Result<Line> {
+        let q = |n: &str| {
+            self.t
+                .columns
+                .get(n)
+                .ok_or_else(|| anyhow!("the trace has no column {n}"))
+        };
+        let (w, x, y, z) = (q("qw")?, q("qx")?, q("qy")?, q("qz")?);
+        let n = self.normal;
+        let points = (0..self.time.len())
+            .map(|i| {
+                // Z_B in I: the third column of the rotation matrix of the quaternion.
+                let zb = [
+                    2.0 * (x[i] * z[i] + w[i] * y[i]),
+                    2.0 * (y[i] * z[i] - w[i] * x[i]),
+                    1.0 - 2.0 * (x[i] * x[i] + y[i] * y[i]),
+                ];
+                let c = zb[0] * n[0] + zb[1] * n[1] + zb[2] * n[2];
+                (self.time[i], c.clamp(-1.0, 1.0).acos().to_degrees())
+            })
+            .collect();
+        Ok(Line {
+            label: "tilt from the slope normal".to_string(),
+            colour: SERIES_COLOURS[3],
+            points,
+        })
+    }
+
+    fn time_range(&self) -> std::ops::Range<f64> {
+        span(self.time.iter().copied(), 0.0)
+    }
+}
+
+/// Writes the trace's pictures, named by `name`; returns their paths.
+pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Result<Vec<PathBuf>> {
+    let tr = Trace::read(path)?;
+    let mut written = Vec::new();
+
+    let cg = name("cg");
+    save_png(&cg, (1100, 1300), |root| {
+        let root = root
+            .titled(&format!("CG and attitude, {}", tr.about), (FONT, 22))
+            .map_err(drawing)?;
+        let p = root.split_evenly((4, 1));
+        let xyz = |prefix: &str, unit: &str| -> anyhow::Result<Vec<Line>> {
+            ["x", "y", "z"]
+                .iter()
+                .enumerate()
+                .map(|(k, axis)| {
+                    tr.line(
+                        &format!("{prefix}{axis}_{unit}"),
+                        &format!("{axis} (along {}_I)", axis.to_uppercase()),
+                        k,
+                        1.0,
+                    )
+                })
+                .collect()
+        };
+        let position: Vec<Line> = ["x", "y", "z"]
+            .iter()
+            .enumerate()
+            .map(|(k, a)| {
+                tr.line(
+                    &format!("{a}_m"),
+                    &format!("{a} (along {}_I)", a.to_uppercase()),
+                    k,
+                    1.0,
+                )
+            })
+            .collect::<anyhow::Result<_>>()?;
+        line_panel(
+            &p[0],
+            "CG position",
+            (TIME, "position (m)"),
+            tr.time_range(),
+            &position,
+        )?;
+        line_panel(
+            &p[1],
+            "CG velocity",
+            (TIME, "velocity (m/s)"),
+            tr.time_range(),
+            &xyz("v", "m_s")?,
+        )?;
+        line_panel(
+            &p[2],
+            "CG acceleration dv/dt (gravity included)",
+            (TIME, "acceleration (m/s²)"),
+            tr.time_range(),
+            &xyz("a", "m_s2")?,
+        )?;
+        let attitude = vec![
+            tr.line("roll_deg", "roll", 0, 1.0)?,
+            tr.line("pitch_deg", "pitch", 1, 1.0)?,
+            tr.line("yaw_deg", "yaw", 2, 1.0)?,
+            tr.tilt()?,
+        ];
+        line_panel(
+            &p[3],
+            "attitude: Euler angles, R_IB = Rz(yaw) Ry(pitch) Rx(roll)",
+            (TIME, "angle (deg)"),
+            tr.time_range(),
+            &attitude,
+        )
+    })?;
+    written.push(cg);
+
+    let legs = name("legs");
+    save_png(&legs, (1100, 1300), |root| {
+        let root = root
+            .titled(&format!("Legs, {}", tr.about), (FONT, 22))
+            .map_err(drawing)?;
+        let p = root.split_evenly((4, 1));
+        let range = tr.time_range();
+        line_panel(
+            &p[0],
+            "footpad penetration below the surface (negative: clearance, shown down to -5 mm)",
+            (TIME, "penetration (mm)"),
+            range.clone(),
+            &tr.per_leg("penetration_m", 1e3)?
+                .into_iter()
+                .map(|mut l| {
+                    // Clearance in flight reaches metres; the contact depth is millimetres.
+                    l.points.iter_mut().for_each(|p| p.1 = p.1.max(-5.0));
+                    l
+                })
+                .collect::<Vec<_>>(),
+        )?;
+        line_panel(
+            &p[1],
+            "normal contact force",
+            (TIME, "force (N)"),
+            range.clone(),
+            &tr.per_leg("normal_force_n", 1.0)?,
+        )?;
+        line_panel(
+            &p[2],
+            "friction force",
+            (TIME, "force (N)"),
+            range.clone(),
+            &tr.per_leg("friction_force_n", 1.0)?,
+        )?;
+        line_panel(
+            &p[3],
+            "damper stroke",
+            (TIME, "stroke (mm)"),
+            range,
+            &tr.per_leg("stroke_m", 1e3)?,
+        )
+    })?;
+    written.push(legs);
+
+    let path3d = name("path-3d");
+    save_png(&path3d, (1000, 900), |root| path_3d(root, &tr))?;
+    written.push(path3d);
+
+    let shock = name("accel-z-body");
+    save_png(&shock, (1100, 800), |root| {
+        let root = root
+            .titled(
+                &format!(
+                    "Acceleration along Z_B (the instruments' shock), {}",
+                    tr.about
+                ),
+                (FONT, 20),
+            )
+            .map_err(drawing)?;
+        let p = root.split_evenly((2, 1));
+        let line = tr.line(
+            "accel_z_body_m_s2",
+            "contact acceleration along Z_B",
+            0,
+            1.0,
+        )?;
+        let peak =
+            line.points.iter().copied().fold(
+                (0.0, 0.0),
+                |m: (f64, f64), q| if q.1.abs() > m.1.abs() { q } else { m },
+            );
+        line_panel(
+            &p[0],
+            &format!(
+                "whole touchdown; peak {:.4} m/s² at {:.3} s",
+                peak.1, peak.0
+            ),
+            (TIME, "acceleration (m/s²)"),
+            tr.time_range(),
+            std::slice::from_ref(&line),
+        )?;
+        let window = peak.0 - 0.1..peak.0 + 0.3;
+        let zoom = Line {
+            points: line
+                .points
+                .iter()
+                .copied()
+                .filter(|q| window.contains(&q.0))
+                .collect(),
+            ..line
+        };
+        line_panel(
+            &p[1],
+            "around the peak",
+            (TIME, "acceleration (m/s²)"),
+            window,
+            std::slice::from_ref(&zoom),
+        )
+    })?;
+    written.push(shock);
+    Ok(written)
+}
+
+/// The CG and footpad paths in 3D over a patch of the slope plane. Equal scales on all
+/// axes, so that the path's shape is true.
+fn path_3d(root: &Area<'_>, tr: &Trace) -> anyhow::Result<()> {
+    let col = |n: &str| {
+        tr.t.columns
+            .get(n)
+            .map(Vec::as_slice)
+            .ok_or_else(|| anyhow!("the trace has no column {n}"))
+    };
+    let path = |x: &str, y: &str, z: &str| -> anyhow::Result<Vec<(f64, f64, f64)>> {
+        let (x, y, z) = (col(x)?, col(y)?, col(z)?);
+        Ok((0..x.len()).map(|i| (x[i], y[i], z[i])).collect())
+    };
+    let mut paths = vec![("CG".to_string(), path("x_m", "y_m", "z_m")?)];
+    for k in 0..tr.legs {
+        paths.push((
+            format!("footpad {k}"),
+            path(
+                &format!("leg{k}_tip_x_m"),
+                &format!("leg{k}_tip_y_m"),
+                &format!("leg{k}_tip_z_m"),
+            )?,
+        ));
+    }
+    let all = || paths.iter().flat_map(|p| p.1.iter());
+    let rx = span(all().map(|p| p.0), 0.0);
+    let ry = span(all().map(|p| p.1), 0.0);
+    let rz = span(all().map(|p| p.2), 0.0);
+    let half = [&rx, &ry, &rz]
+        .iter()
+        .map(|r| 0.5 * (r.end - r.start))
+        .fold(0.5, f64::max)
+        * 1.05;
+    let mid = |r: &std::ops::Range<f64>| 0.5 * (r.start + r.end);
+    let (cx, cy, cz) = (mid(&rx), mid(&ry), mid(&rz));
+    // plotters draws its second axis upwards: the chart's axes are (X_I, Z_I, Y_I).
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!("Path of the CG and footpads, {}", tr.about),
+            (FONT, 20),
+        )
+        .margin(20)
+        .build_cartesian_3d(
+            cx - half..cx + half,
+            cz - half..cz + half,
+            cy - half..cy + half,
+        )
+        .map_err(drawing)?;
+    chart.with_projection(|mut p| {
+        p.yaw = 0.7;
+        p.pitch = 0.35;
+        p.scale = 0.85;
+        p.into_matrix()
+    });
+    chart
+        .configure_axes()
+        .light_grid_style(RGBColor(235, 235, 235))
+        .max_light_lines(4)
+        .label_style((FONT, 12))
+        .draw()
+        .map_err(drawing)?;
+    // The slope plane n . p = 0 (its mean, on rough terrain) as a grid of lines.
+    let n = tr.normal;
+    if n[2] > 1e-6 {
+        let grey = RGBColor(170, 170, 170);
+        let height = |x: f64, y: f64| -(n[0] * x + n[1] * y) / n[2];
+        let steps = 8;
+        for i in 0..=steps {
+            let f = -half + 2.0 * half * f64::from(i) / f64::from(steps);
+            for line in [
+                [(cx + f, cy - half), (cx + f, cy + half)],
+                [(cx - half, cy + f), (cx + half, cy + f)],
+            ] {
+                let pts: Vec<(f64, f64, f64)> = (0..=20)
+                    .map(|j| {
+                        let s = f64::from(j) / 20.0;
+                        let x = line[0].0 + s * (line[1].0 - line[0].0);
+                        let y = line[0].1 + s * (line[1].1 - line[0].1);
+                        (x, height(x, y), y)
+                    })
+                    .filter(|p| (p.1 - cz).abs() <= half)
+                    .collect();
+                chart
+                    .draw_series(LineSeries::new(pts, grey.stroke_width(1)))
+                    .map_err(drawing)?;
+            }
+        }
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64, f64)>>())
+            .map_err(drawing)?
+            .label("slope plane")
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(1))
+            });
+    }
+    for (k, (label, pts)) in paths.iter().enumerate() {
+        let colour = if k == 0 {
+            BLACK
+        } else {
+            SERIES_COLOURS[(k - 1) % SERIES_COLOURS.len()]
+        };
+        let width = if k == 0 { 3 } else { 1 };
+        chart
+            .draw_series(LineSeries::new(
+                pts.iter().map(|p| (p.0, p.2, p.1)),
+                colour.stroke_width(width),
+            ))
+            .map_err(drawing)?
+            .label(label.as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(width))
+            });
+    }
+    // Start and end of the CG's path.
+    let cg = &paths[0].1;
+    for (p, what) in [(cg[0], "start"), (cg[cg.len() - 1], "end")] {
+        chart
+            .draw_series([EmptyElement::at((p.0, p.2, p.1))
+                + Circle::new((0, 0), 5, BLACK.filled())
+                + Text::new(what, (8, -18), (FONT, 15))])
+            .map_err(drawing)?;
+    }
+    // Axis names at the positive ends of the axes.
+    for (text, at) in [
+        ("X_I (m)", (cx + half, cz - half, cy - half)),
+        ("Y_I (m)", (cx - half, cz - half, cy + half)),
+        ("Z_I, up (m)", (cx - half, cz + half, cy - half)),
+    ] {
+        chart
+            .draw_series([Text::new(text, at, (FONT, 15))])
+            .map_err(drawing)?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.9))
+        .border_style(RGBColor(160, 160, 160))
+        .label_font((FONT, 13))
+        .draw()
+        .map_err(drawing)?;
+    Ok(())
+}
