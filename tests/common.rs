@@ -207,7 +207,8 @@ pub(crate) fn check_bad_input(command: &str, case: &BadInput, never: &[&str]) ->
 // ---------------------------------------------------------------------------------------
 // Python readers.
 
-const PYTHON_MODULES: &str = "pandas, polars, pyarrow";
+/// What the Python tests import: the readers, and matplotlib for examples/python.
+const PYTHON_MODULES: &str = "pandas, polars, pyarrow, matplotlib";
 
 /// The Python interpreter: `TOUCHDOWN_PYTHON`, or `python3`.
 pub(crate) fn python() -> String {
