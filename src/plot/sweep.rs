@@ -165,7 +165,8 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
     // Bigger dots for fewer samples; single pixels when they would cover the map anyway.
     let radius = match s.slope.len() {
         0..=2_000 => 3,
-        2_001..=50_000 => 2,
+        2_001..=20_000 => 2,
+        20_001..=300_000 => 1,
         _ => 0,
     };
     let dots = s
