@@ -8,6 +8,7 @@ mod trace;
 
 use crate::output::AtomicFile;
 use crate::output::read::{format_of, open};
+use crate::reference::Outcome;
 use anyhow::{anyhow, bail};
 use arrow_array::cast::AsArray;
 use arrow_array::types::Float64Type;
@@ -92,11 +93,11 @@ fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
 }
 
 /// Columns of a touchdown file, as `f64`, with the schema metadata and the outcome
-/// column when the file has one.
+/// column (as indices into `Outcome::ALL`) when the file has one.
 struct Table {
     meta: HashMap<String, String>,
     columns: HashMap<String, Vec<f64>>,
-    outcome: Vec<String>,
+    outcome: Vec<u8>,
     rows: usize,
 }
 
@@ -123,7 +124,14 @@ impl Table {
                     let s = array.as_string_opt::<i32>().ok_or_else(|| {
                         anyhow!("{}: the outcome column is not text", path.display())
                     })?;
-                    outcome.extend(s.iter().map(|v| v.unwrap_or("").to_string()));
+                    for v in s.iter() {
+                        let v = v.unwrap_or("");
+                        let k = Outcome::ALL
+                            .iter()
+                            .position(|o| o.name() == v)
+                            .ok_or_else(|| anyhow!("{}: unknown outcome {v:?}", path.display()))?;
+                        outcome.push(k as u8);
+                    }
                     continue;
                 }
                 if !wanted(name) {

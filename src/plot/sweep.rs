@@ -6,7 +6,6 @@ use crate::reference::Outcome;
 use crate::report::{SECTOR_DEG, allowable_slope, wilson_interval};
 use crate::scenario::Scenario;
 use crate::stability::static_limit_deg;
-use anyhow::anyhow;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -17,7 +16,7 @@ struct Sweep {
     relative_azimuth: Vec<f64>,
     slope: Vec<f64>,
     /// Index into `Outcome::ALL`.
-    outcome: Vec<usize>,
+    outcome: Vec<u8>,
     peak_acceleration: Vec<f64>,
     /// The longest final damper stroke of the sample's legs, mm.
     stroke_mm: Vec<f64>,
@@ -38,17 +37,6 @@ impl Sweep {
         if t.rows == 0 {
             anyhow::bail!("{} holds no samples", path.display());
         }
-        let names: Vec<&str> = Outcome::ALL.iter().map(|o| o.name()).collect();
-        let outcome = t
-            .outcome
-            .iter()
-            .map(|o| {
-                names
-                    .iter()
-                    .position(|n| n == o)
-                    .ok_or_else(|| anyhow!("{}: unknown outcome {o:?}", path.display()))
-            })
-            .collect::<anyhow::Result<Vec<usize>>>()?;
         let (azimuth, yaw) = (
             t.column("downhill_azimuth_deg", path)?,
             t.column("yaw_deg", path)?,
@@ -69,7 +57,7 @@ impl Sweep {
                 .map(|(a, y)| (a - y).rem_euclid(360.0))
                 .collect(),
             slope: t.column("slope_deg", path)?.to_vec(),
-            outcome,
+            outcome: t.outcome.clone(),
             peak_acceleration: t.column("peak_acceleration_m_s2", path)?.to_vec(),
             stroke_mm: (0..t.rows)
                 .map(|i| 1e3 * strokes.iter().map(|s| s[i]).fold(0.0, f64::max))
@@ -174,7 +162,7 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
         .iter()
         .zip(&s.slope)
         .zip(&s.outcome)
-        .map(|((a, sl), o)| ((*a, *sl), OUTCOME_COLOURS[*o]));
+        .map(|((a, sl), o)| ((*a, *sl), OUTCOME_COLOURS[usize::from(*o)]));
     if radius == 0 {
         chart
             .draw_series(dots.map(|(p, c)| Pixel::new(p, c)))
@@ -186,7 +174,7 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
     }
     // The legend: one entry per outcome present, with its count.
     for (k, outcome) in Outcome::ALL.iter().enumerate() {
-        let n = s.outcome.iter().filter(|o| **o == k).count();
+        let n = s.outcome.iter().filter(|o| usize::from(**o) == k).count();
         if n == 0 {
             continue;
         }
@@ -203,7 +191,7 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
     let mut per_sector: Vec<Vec<(f64, bool)>> = vec![Vec::new(); sectors];
     for ((a, sl), o) in s.relative_azimuth.iter().zip(&s.slope).zip(&s.outcome) {
         let k = ((a / SECTOR_DEG) as usize).min(sectors - 1);
-        per_sector[k].push((*sl, Outcome::ALL[*o] == Outcome::Stable));
+        per_sector[k].push((*sl, Outcome::ALL[usize::from(*o)] == Outcome::Stable));
     }
     let mut any = false;
     for (k, samples) in per_sector.iter_mut().enumerate() {
@@ -266,8 +254,8 @@ fn tipped_by_slope(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::
     for (sl, o) in s.slope.iter().zip(&s.outcome) {
         let b = (((sl - first) / width).floor().max(0.0) as usize).min(bins - 1);
         n[b] += 1;
-        tipped[b] += u64::from(Outcome::ALL[*o] == Outcome::Tipped);
-        stable[b] += u64::from(Outcome::ALL[*o] == Outcome::Stable);
+        tipped[b] += u64::from(Outcome::ALL[usize::from(*o)] == Outcome::Tipped);
+        stable[b] += u64::from(Outcome::ALL[usize::from(*o)] == Outcome::Stable);
     }
     let (lim_lo, lim_hi) = limit.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
         (lo.min(p.1), hi.max(p.1))
