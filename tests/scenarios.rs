@@ -66,3 +66,34 @@ fn every_study_scenario_runs() {
         assert!(run.stdout.contains("samples                 24"), "{run}");
     }
 }
+
+#[test]
+fn a_lander_balanced_on_two_footpads_and_a_hovering_third_is_stable() {
+    // Sample 444 of scenarios/rough.toml comes to rest on two diagonal footpads (0.84 N
+    // each, m g = 1.68 N) with a third hovering within 2 nm of the ground (0-0.01 N, on and
+    // off contact) and the fourth 17 mm above it; body rates fall below 1e-4 deg/s. It is
+    // at rest; before the rest rule allowed a 1 micrometre gap it ended `sliding` at 120 s.
+    let dir = TempDir::new("hovering-footpad");
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenarios/rough.toml");
+    let run = touchdown(
+        dir.path(),
+        &[
+            "trace",
+            "--scenario",
+            file.to_str().unwrap(),
+            "--sample",
+            "444",
+            "--every",
+            "1000",
+            "--out",
+            "t.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    let outcome = run
+        .stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("outcome"))
+        .unwrap_or_else(|| panic!("no outcome line: {run}"));
+    assert!(outcome.contains("stable"), "{outcome}");
+}

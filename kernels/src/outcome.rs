@@ -17,6 +17,13 @@ pub const BOUNCING: f64 = 3.0;
 /// Code of `diverged`.
 pub const DIVERGED: f64 = 4.0;
 
+/// A leg within this gap of the surface bears on it for the rest rule of `stable`, m. A
+/// lander balanced on two footpads with a third one hovering at nanometres, on and off
+/// contact with forces of 0.01 N, is at rest on three legs: without the gap the rule never
+/// held for the hold time and such landers ended `sliding` at t_max though they did not
+/// move. 1 micrometre is far below any penetration of the contact law under load.
+pub const REST_GAP_M: f64 = 1e-6;
+
 /// Mask: every one of `xs` is finite. `x * 0` is 0 for a finite `x` and NaN for an infinite
 /// or NaN one, so the sum of the products is 0 exactly when all are finite.
 #[inline(always)]
@@ -47,10 +54,13 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
     t.min_cos_tilt = min_into(t.min_cos_tilt, cos_tilt);
 
     let mut contacts = zero;
+    let mut resting = zero;
     let mut deepest = splat(f64::NEG_INFINITY);
+    let rest_gap = splat(-REST_GAP_M);
     for (leg, step) in block.legs.iter_mut().zip(&block.leg_step) {
         leg.peak_normal_n = max_into(leg.peak_normal_n, step.normal_n);
         contacts += step.penetration_m.simd_gt(zero).select(one, zero);
+        resting += step.penetration_m.simd_gt(rest_gap).select(one, zero);
         deepest = max_into(deepest, step.penetration_m);
     }
     t.max_penetration = max_into(t.max_penetration, deepest);
@@ -117,7 +127,7 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
             .start_rate_rad_s
             .length_squared()
             .simd_lt(p.rest_rate_squared)
-        & contacts.simd_ge(p.rest_contacts)
+        & resting.simd_ge(p.rest_contacts)
         & inside;
     t.rest_s = at_rest.select(t.rest_s + block.dt_s, zero);
     let stable = t.rest_s.simd_ge(p.hold_time_s);

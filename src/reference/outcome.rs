@@ -9,13 +9,14 @@
 //!   the edge between two neighbouring footpads, one of them in contact) while rotating away
 //!   from it: gravity then has no way to bring it back;
 //! - `stable`: for `hold_time_s` without a break, CG speed and body rate below the rest
-//!   thresholds, at least three legs (all, with fewer) in contact, the CG inside every
-//!   edge of the support polygon;
+//!   thresholds, at least three legs (all, with fewer) in contact or within `REST_GAP_M`
+//!   (1 micrometre) of it, the CG inside every edge of the support polygon;
 //! - at `t_max`: `sliding` if a leg touches the surface (and not at rest), else `bouncing`.
 
 use super::model::{Model, Surface};
 use super::step::{State, StepReport};
 use glam::DVec3;
+use kernels::outcome::REST_GAP_M;
 
 /// How a touchdown ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -137,10 +138,12 @@ impl Tracker {
         self.min_cos_tilt = self.min_cos_tilt.min(cos_tilt);
 
         let mut contacts = 0;
+        let mut resting = 0;
         let mut deepest = f64::NEG_INFINITY;
         for (leg, peak) in report.legs.iter().zip(&mut self.peak_normal) {
             *peak = peak.max(leg.normal_n);
             contacts += usize::from(leg.in_contact());
+            resting += usize::from(leg.penetration_m > -REST_GAP_M);
             deepest = deepest.max(leg.penetration_m);
         }
         self.max_penetration = self.max_penetration.max(deepest);
@@ -191,7 +194,7 @@ impl Tracker {
 
         let at_rest = body.velocity_m_s.length_squared() < th.rest_speed_m_s.powi(2)
             && body.rate_rad_s.length_squared() < th.rest_rate_rad_s.powi(2)
-            && contacts >= model.legs.len().min(3)
+            && resting >= model.legs.len().min(3)
             && inside;
         self.rest_s = if at_rest {
             self.rest_s + report.dt_s
