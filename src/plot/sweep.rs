@@ -130,7 +130,8 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
         .iter()
         .chain(limit.iter().map(|p| &p.1))
         .fold(0.0f64, |m, v| m.max(*v));
-    let y_max = (top / 5.0).ceil().max(1.0) * 5.0;
+    // Headroom above the data and the limit curve, so that the legend covers neither.
+    let y_max = (top * 1.3 / 5.0).ceil().max(1.0) * 5.0;
     let mut chart = ChartBuilder::on(root)
         .caption(format!("Stability map: {}", s.about), (FONT, 22))
         .margin(12)
