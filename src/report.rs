@@ -4,6 +4,7 @@
 //! design note.
 
 use crate::output::read::{format_of, open};
+use crate::reference::Outcome;
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use std::fmt::Write as _;
@@ -11,6 +12,21 @@ use std::path::Path;
 
 /// Sectors of downhill azimuth relative to the lander (`downhill_azimuth - yaw`), deg.
 pub const SECTOR_DEG: f64 = 45.0;
+
+/// Number of sectors around the lander.
+pub const SECTORS: usize = (360.0 / SECTOR_DEG) as usize;
+
+/// The downhill azimuth relative to the lander, in [0, 360) deg.
+#[must_use]
+pub fn relative_azimuth_deg(downhill_azimuth_deg: f64, yaw_deg: f64) -> f64 {
+    (downhill_azimuth_deg - yaw_deg).rem_euclid(360.0)
+}
+
+/// The sector of a relative azimuth: 0 for [0, 45) deg, 1 for [45, 90) deg, ...
+#[must_use]
+pub fn sector_of(relative_azimuth_deg: f64) -> usize {
+    ((relative_azimuth_deg / SECTOR_DEG) as usize).min(SECTORS - 1)
+}
 
 /// The share of stable samples that makes a slope allowable.
 pub const ALLOWABLE_STABLE: f64 = 0.99;
@@ -61,8 +77,8 @@ pub fn allowable_slope(samples: &mut [(f64, bool)]) -> Option<f64> {
     best
 }
 
-/// The `q`-quantile of `values` (nearest rank), 0 for none.
-fn quantile(values: &mut [f64], q: f64) -> f64 {
+/// The `q`-quantile of `values` (nearest rank), 0 for none; sorts `values`.
+pub(crate) fn quantile(values: &mut [f64], q: f64) -> f64 {
     if values.is_empty() {
         return 0.0;
     }
@@ -91,12 +107,8 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
         .iter()
         .filter(|f| f.name().ends_with("_peak_normal_force_n"))
         .count();
-    let names: Vec<&str> = crate::reference::Outcome::ALL
-        .iter()
-        .map(|o| o.name())
-        .collect();
-    let mut counts = vec![0u64; names.len()];
-    let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); (360.0 / SECTOR_DEG) as usize];
+    let mut counts = [0u64; Outcome::ALL.len()];
+    let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
     let mut loads = [
         Load {
             name: "peak CG acceleration",
@@ -146,14 +158,11 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
         );
         for i in 0..b.num_rows() {
             let name = outcome.value(i);
-            let k = names
-                .iter()
-                .position(|n| *n == name)
+            let o = Outcome::from_name(name)
                 .ok_or_else(|| anyhow!("{}: unknown outcome {name:?}", path.display()))?;
-            counts[k] += 1;
-            let relative = (azimuth.value(i) - yaw.value(i)).rem_euclid(360.0);
-            let sector = ((relative / SECTOR_DEG) as usize).min(sectors.len() - 1);
-            sectors[sector].push((slope.value(i), name == "stable"));
+            counts[o as usize] += 1;
+            let relative = relative_azimuth_deg(azimuth.value(i), yaw.value(i));
+            sectors[sector_of(relative)].push((slope.value(i), o == Outcome::Stable));
             let max_of =
                 |cols: &[&Float64Array]| cols.iter().map(|c| c.value(i)).fold(0.0, f64::max);
             loads[0].values.push(acc.value(i));
@@ -183,7 +192,7 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
         t,
         "| outcome | samples | share | 95 % interval |\n|---|---:|---:|---:|"
     );
-    for (name, k) in names.iter().zip(&counts) {
+    for (name, k) in Outcome::ALL.iter().map(|o| o.name()).zip(&counts) {
         let (lo, hi) = wilson_interval(*k, total);
         let _ = writeln!(
             t,

@@ -8,6 +8,12 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 pub(crate) const BIN: &str = env!("CARGO_BIN_EXE_touchdown");
 
+/// A short scenario: the default sweep with flights cut at 20 s.
+pub(crate) const SHORT: &str = "[simulation]\nt_max_s = 20.0\n";
+
+/// The short scenario with a three-leg lander.
+pub(crate) const THREE_LEGS: &str = "[lander]\nlegs = 3\n\n[simulation]\nt_max_s = 20.0\n";
+
 /// A fresh, empty folder for one test.
 pub(crate) struct TempDir(PathBuf);
 

@@ -7,7 +7,8 @@
 //! `TOUCHDOWN_SKIP_PYTHON=1` (then they are skipped with a note).
 
 use crate::common::{
-    TempDir, python, python_readers_available, read_bytes, run_python_check, touchdown,
+    SHORT, THREE_LEGS, TempDir, python, python_readers_available, read_bytes, run_python_check,
+    touchdown,
 };
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -39,12 +40,6 @@ attitude_reference = "surface"
 [simulation]
 t_max_s = 20.0
 "#;
-
-/// The default sweep with flights cut at 20 s.
-const SHORT: &str = "[simulation]\nt_max_s = 20.0\n";
-
-/// The short scenario with a three-leg lander.
-const THREE_LEGS: &str = "[lander]\nlegs = 3\n\n[simulation]\nt_max_s = 20.0\n";
 
 const PNG_MAGIC: &[u8] = b"\x89PNG\r\n\x1a\n";
 

@@ -6,8 +6,8 @@
 //! system temp folder, removed when the test passes and kept when it fails.
 
 use crate::common::{
-    BadInput, Run, TempDir, bad_args, bad_scenario, check_bad_input, python_readers_available,
-    read_bytes, run_python_check, touchdown,
+    BadInput, Run, SHORT, THREE_LEGS, TempDir, bad_args, bad_scenario, check_bad_input,
+    python_readers_available, read_bytes, run_python_check, touchdown,
 };
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray, UInt32Array, UInt64Array};
 use arrow_ipc::reader::FileReader;
@@ -20,14 +20,8 @@ use std::time::{Duration, Instant};
 use touchdown::reference::Outcome;
 use touchdown::scenario::INPUT_FIELDS;
 
-/// A short scenario: the default sweep with flights cut at 20 s.
-const SHORT: &str = "[simulation]\nt_max_s = 20.0\n";
-
 /// The short scenario on rough terrain (terrain tiles and landing-point offsets).
 const ROUGH: &str = "[simulation]\nt_max_s = 20.0\n\n[surface.roughness]\nrms_height_m = 0.02\n";
-
-/// The short scenario with a three-leg lander.
-const THREE_LEGS: &str = "[lander]\nlegs = 3\n\n[simulation]\nt_max_s = 20.0\n";
 
 // ---------------------------------------------------------------------------------------
 // What the binary prints.

@@ -126,11 +126,9 @@ impl Table {
                     })?;
                     for v in s.iter() {
                         let v = v.unwrap_or("");
-                        let k = Outcome::ALL
-                            .iter()
-                            .position(|o| o.name() == v)
+                        let o = Outcome::from_name(v)
                             .ok_or_else(|| anyhow!("{}: unknown outcome {v:?}", path.display()))?;
-                        outcome.push(k as u8);
+                        outcome.push(o as u8);
                     }
                     continue;
                 }

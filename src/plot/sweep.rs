@@ -3,7 +3,10 @@
 
 use super::{Area, FONT, OUTCOME_COLOURS, Table, drawing, legend, save_png, span};
 use crate::reference::Outcome;
-use crate::report::{SECTOR_DEG, allowable_slope, wilson_interval};
+use crate::report::{
+    SECTOR_DEG, SECTORS, allowable_slope, quantile, relative_azimuth_deg, sector_of,
+    wilson_interval,
+};
 use crate::scenario::Scenario;
 use crate::stability::static_limit_deg;
 use plotters::prelude::*;
@@ -54,7 +57,7 @@ impl Sweep {
             relative_azimuth: azimuth
                 .iter()
                 .zip(yaw)
-                .map(|(a, y)| (a - y).rem_euclid(360.0))
+                .map(|(a, y)| relative_azimuth_deg(*a, *y))
                 .collect(),
             slope: t.column("slope_deg", path)?.to_vec(),
             outcome: t.outcome.clone(),
@@ -188,11 +191,9 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
     }
     // The allowable slope of each sector, as `touchdown report` finds it.
     let purple = RGBColor(110, 0, 150);
-    let sectors = (360.0 / SECTOR_DEG) as usize;
-    let mut per_sector: Vec<Vec<(f64, bool)>> = vec![Vec::new(); sectors];
+    let mut per_sector: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
     for ((a, sl), o) in s.relative_azimuth.iter().zip(&s.slope).zip(&s.outcome) {
-        let k = ((a / SECTOR_DEG) as usize).min(sectors - 1);
-        per_sector[k].push((*sl, Outcome::ALL[usize::from(*o)] == Outcome::Stable));
+        per_sector[sector_of(*a)].push((*sl, Outcome::ALL[usize::from(*o)] == Outcome::Stable));
     }
     let mut any = false;
     for (k, samples) in per_sector.iter_mut().enumerate() {
@@ -343,26 +344,13 @@ fn tipped_by_slope(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::
     legend(&mut chart, SeriesLabelPosition::MiddleLeft)
 }
 
-/// The `q`-quantile of `values` (nearest rank).
-fn quantile(values: &[f64], q: f64) -> f64 {
-    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
-    if v.is_empty() {
-        return 0.0;
-    }
-    v.sort_by(f64::total_cmp);
-    let rank = ((q * v.len() as f64).ceil() as usize).clamp(1, v.len());
-    v[rank - 1]
-}
-
 /// A histogram of `values` in 40 bins from 0; past 3 times the 99.9th percentile the
 /// tail is counted in the caption instead, so that a few outliers do not flatten it.
 fn histogram(area: &Area<'_>, caption: &str, x_desc: &str, values: &[f64]) -> anyhow::Result<()> {
-    let max = values
-        .iter()
-        .copied()
-        .filter(|v| v.is_finite())
-        .fold(0.0f64, f64::max);
-    let p999 = quantile(values, 0.999);
+    let mut finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    let p999 = quantile(&mut finite, 0.999);
+    // `quantile` sorted them.
+    let max = finite.last().copied().unwrap_or(0.0).max(0.0);
     let top = if max > 3.0 * p999 && p999 > 0.0 {
         p999
     } else {
@@ -399,7 +387,7 @@ fn histogram(area: &Area<'_>, caption: &str, x_desc: &str, values: &[f64]) -> an
     let width = top / bins as f64;
     let mut counts = vec![0u64; bins];
     let mut beyond = 0u64;
-    for v in values.iter().filter(|v| v.is_finite()) {
+    for v in &finite {
         let b = (v / width).floor() as usize;
         if b < bins {
             counts[b] += 1;

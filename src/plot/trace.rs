@@ -143,18 +143,7 @@ pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
                 })
                 .collect()
         };
-        let position: Vec<Line> = ["x", "y", "z"]
-            .iter()
-            .enumerate()
-            .map(|(k, a)| {
-                tr.line(
-                    &format!("{a}_m"),
-                    &format!("{a} (along {}_I)", a.to_uppercase()),
-                    k,
-                    1.0,
-                )
-            })
-            .collect::<anyhow::Result<_>>()?;
+        let position = xyz("", "m")?;
         line_panel(
             &p[0],
             "CG position",

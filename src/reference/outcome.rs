@@ -49,6 +49,12 @@ impl Outcome {
             Outcome::Diverged => "diverged",
         }
     }
+
+    /// The outcome written as `name` in files, if any.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Outcome> {
+        Outcome::ALL.into_iter().find(|o| o.name() == name)
+    }
 }
 
 /// Per-leg results of a sample.
