@@ -138,6 +138,8 @@ pub fn kernel_params(m: &Model) -> Params {
         diverged_speed_squared: lane(m.thresholds.diverged_speed_m_s.powi(2)),
         diverged_rate_squared: lane(m.thresholds.diverged_rate_rad_s.powi(2)),
         diverged_penetration_m: lane(m.thresholds.diverged_penetration_m),
+        early_tipping: m.thresholds.early_tipping,
+        quasi_static_force_squared: lane((2.0 * m.mass_kg * m.gravity_m_s2).powi(2)),
         rest_contacts: lane(m.legs.len().min(3) as f64),
     }
 }

@@ -4,6 +4,7 @@ mod agreement;
 mod cli;
 mod common;
 mod interrupt;
+mod outcome_rules;
 mod plot;
 mod python_example;
 mod report;

@@ -14,6 +14,8 @@ pub struct LegLanes {
     pub anchor_m: Vec3,
     /// Mask: the friction anchor is set (the leg touched in the previous step).
     pub anchored: Lane,
+    /// The friction anchor when the current rest began (see `outcome`).
+    pub rest_anchor_m: Vec3,
     pub peak_normal_n: Lane,
 }
 
@@ -25,6 +27,8 @@ pub struct LegStep {
     pub tip_velocity_m_s: Vec3,
     pub penetration_m: Lane,
     pub normal_n: Lane,
+    /// Mask: the footpad slips (in contact, friction at its cap).
+    pub slipping: Lane,
 }
 
 /// The surface of each lane.
@@ -118,6 +122,7 @@ impl Block {
             absorbed_j: zero,
             anchor_m: Vec3::ZERO,
             anchored: all_false(),
+            rest_anchor_m: Vec3::ZERO,
             peak_normal_n: zero,
         };
         let leg_step = LegStep {
@@ -125,6 +130,7 @@ impl Block {
             tip_velocity_m_s: Vec3::ZERO,
             penetration_m: zero,
             normal_n: zero,
+            slipping: all_false(),
         };
         let identity = Quat {
             x: zero,
@@ -189,6 +195,7 @@ impl Block {
             set(&mut leg.absorbed_j, 0.0);
             leg.anchor_m.set_lane(i, [0.0; 3]);
             set(&mut leg.anchored, 0.0);
+            leg.rest_anchor_m.set_lane(i, [0.0; 3]);
             set(&mut leg.peak_normal_n, 0.0);
         }
         let s = &mut self.surface;

@@ -8,8 +8,9 @@ use crate::params::Params;
 use crate::vec3::Vec3;
 
 /// The force of one leg on every lane (zero where `contact` is false), with its normal
-/// magnitude. Updates the friction anchor and the damper of the leg. (The reference also
-/// returns the friction magnitude, for the trace; nothing in a sweep reads it.)
+/// magnitude and the mask of lanes where the footpad slips. Updates the friction anchor and
+/// the damper of the leg. (The reference also returns the friction magnitude, for the
+/// trace; nothing in a sweep reads it.)
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn leg_force(
@@ -22,7 +23,7 @@ pub fn leg_force(
     tip_velocity: Vec3,
     strut_up: Vec3,
     leg: &mut LegLanes,
-) -> (Vec3, Lane) {
+) -> (Vec3, Lane, Lane) {
     let zero = splat(0.0);
     let normal_velocity = normal.dot(tip_velocity);
     let mut normal_n = p
@@ -84,5 +85,5 @@ pub fn leg_force(
     }
     let normal_n = contact.select(normal_n, zero);
     let force = Vec3::select(contact, normal.mul_add(normal_n, friction), Vec3::ZERO);
-    (force, normal_n)
+    (force, normal_n, slips)
 }

@@ -24,6 +24,15 @@ pub const DIVERGED: f64 = 4.0;
 /// move. 1 micrometre is far below any penetration of the contact law under load.
 pub const REST_GAP_M: f64 = 1e-6;
 
+/// A footpad whose friction anchor moved by more than this since the rest began has slipped,
+/// m, and the lander is not at rest. The anchor moves only while the friction is at its cap
+/// (MODEL.md section 5), so a lander that slides moves it at its own speed: set down from
+/// rest 1 deg above the friction angle it slides ~0.5 mm within a 2 s hold. A footpad that
+/// only sits at its cap (the damping of the half-step gravity velocity keeps a loaded
+/// downhill footpad there) leaves its anchor where it is. A speed threshold cannot tell the
+/// two apart: both are slower than any rest speed in milligravity.
+pub const REST_SLIP_M: f64 = 1e-6;
+
 /// Mask: every one of `xs` is finite. `x * 0` is 0 for a finite `x` and NaN for an infinite
 /// or NaN one, so the sum of the products is 0 exactly when all are finite.
 #[inline(always)]
@@ -63,6 +72,13 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
         resting += step.penetration_m.simd_gt(rest_gap).select(one, zero);
         deepest = max_into(deepest, step.penetration_m);
     }
+    // Every footpad on the surface still sticks where it stuck when the rest began.
+    let mut stuck = !all_false();
+    let rest_slip_squared = splat(REST_SLIP_M * REST_SLIP_M);
+    for leg in &block.legs {
+        let slid = (leg.anchor_m - leg.rest_anchor_m).length_squared();
+        stuck &= !leg.anchored | slid.simd_le(rest_slip_squared);
+    }
     t.max_penetration = max_into(t.max_penetration, deepest);
     let touching = contacts.simd_gt(zero);
     t.first_contact_s =
@@ -93,6 +109,11 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
 
     let mut inside = !all_false();
     let mut tipping = all_false();
+    let quasi_static = block
+        .force_n
+        .length_squared()
+        .simd_le(p.quasi_static_force_squared);
+    let two_contacts = contacts.simd_eq(splat(2.0));
     if !p.edges.is_empty() {
         let n = block.leg_step.len() as f64;
         let centroid = block.leg_step.iter().fold(Vec3::ZERO, |c, l| c + l.tip_m) * splat(1.0 / n);
@@ -110,14 +131,23 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
                 .dot_xy(block.start_position_m - a.tip_m)
                 .simd_gt(zero);
             inside &= !beyond;
+            let pivot = two_contacts
+                & a.penetration_m.simd_gt(zero)
+                & c.penetration_m.simd_gt(zero)
+                & !a.slipping
+                & !c.slipping;
             let away = outward
                 .dot_xy(block.start_velocity_m_s - a.tip_velocity_m_s)
                 .simd_gt(zero);
-            let edge_touches = a.penetration_m.simd_gt(zero) | c.penetration_m.simd_gt(zero);
-            tipping |= beyond & away & edge_touches;
+            tipping |= beyond & pivot & away & quasi_static;
         }
     }
-    let tipped = cos_tilt.simd_lt(zero) | tipping;
+    let tipped = cos_tilt.simd_lt(zero)
+        | (if p.early_tipping {
+            tipping
+        } else {
+            all_false()
+        });
 
     let at_rest = block
         .start_velocity_m_s
@@ -128,8 +158,12 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
             .length_squared()
             .simd_lt(p.rest_rate_squared)
         & resting.simd_ge(p.rest_contacts)
+        & stuck
         & inside;
     t.rest_s = at_rest.select(t.rest_s + block.dt_s, zero);
+    for leg in &mut block.legs {
+        leg.rest_anchor_m = Vec3::select(at_rest, leg.rest_anchor_m, leg.anchor_m);
+    }
     let stable = t.rest_s.simd_ge(p.hold_time_s);
     let ended = block.t_s.simd_ge(p.t_max_s);
     let at_end = at_rest.select(

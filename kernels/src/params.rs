@@ -69,6 +69,10 @@ pub struct Params {
     /// `diverged_rate_rad_s^2`.
     pub diverged_rate_squared: Lane,
     pub diverged_penetration_m: Lane,
+    /// Whether `tipped` is decided at the point of no return, not only past 90 deg.
+    pub early_tipping: bool,
+    /// `(2 m g)^2`: a contact force within twice the weight means no impact is under way.
+    pub quasi_static_force_squared: Lane,
     /// Legs that must touch for rest: three, or all when fewer.
     pub rest_contacts: Lane,
 }

@@ -60,16 +60,16 @@ pub fn step(p: &Params, block: &mut Block, dt: Lane) {
         // As the reference's `if penetration > 0`, for the whole block at once: a leg that
         // no lander (holding a sample) has on the surface adds nothing and forgets its
         // anchor.
-        let normal_n = if (contact & block.active).to_bitmask() == 0 {
+        let (normal_n, slipping) = if (contact & block.active).to_bitmask() == 0 {
             leg_state.anchored = all_false();
-            zero
+            (zero, all_false())
         } else {
             // The strut direction matters to the dampers only.
             let strut_up = match p.honeycomb {
                 Some(_) => -rotation.mul_vec3(leg.strut_axis),
                 None => Vec3::ZERO,
             };
-            let (f, normal_n) = contact::leg_force(
+            let (f, normal_n, slipping) = contact::leg_force(
                 p,
                 dt,
                 contact,
@@ -82,13 +82,14 @@ pub fn step(p: &Params, block: &mut Block, dt: Lane) {
             );
             force_n += f;
             moment_i += arm.cross(f);
-            normal_n
+            (normal_n, slipping)
         };
         *out = LegStep {
             tip_m: tip,
             tip_velocity_m_s: tip_velocity,
             penetration_m: penetration,
             normal_n,
+            slipping,
         };
     }
     let moment_n_m = rotation.transpose_mul_vec3(moment_i);

@@ -42,6 +42,8 @@ pub struct LegForce {
     pub normal_n: f64,
     /// Friction force magnitude, N.
     pub friction_n: f64,
+    /// Whether the footpad slips: friction at its cap, the anchor dragged along.
+    pub slipping: bool,
 }
 
 /// Force of a leg whose footpad at `tip` (in I) with velocity `tip_velocity` penetrates the
@@ -95,7 +97,8 @@ pub fn leg_force(
 
     let cap = contact.friction_coefficient * normal_n;
     let magnitude = friction.length();
-    if magnitude > cap {
+    let slipping = magnitude > cap;
+    if slipping {
         friction *= cap / magnitude;
         // Slip: move the anchor so that the spring alone would give the capped force.
         leg.anchor_m = tip + friction / contact.friction_stiffness_n_per_m;
@@ -104,5 +107,6 @@ pub fn leg_force(
         force_n: normal * normal_n + friction,
         normal_n,
         friction_n: friction.length(),
+        slipping,
     }
 }

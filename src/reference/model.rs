@@ -55,6 +55,7 @@ pub struct Thresholds {
     pub diverged_speed_m_s: f64,
     pub diverged_rate_rad_s: f64,
     pub diverged_penetration_m: f64,
+    pub early_tipping: bool,
 }
 
 /// Everything a sweep holds fixed, in the units the physics uses.
@@ -165,6 +166,7 @@ impl Model {
                 diverged_speed_m_s: o.diverged_speed_m_s,
                 diverged_rate_rad_s: o.diverged_rate_deg_s.to_radians(),
                 diverged_penetration_m: o.diverged_penetration_m,
+                early_tipping: o.early_tipping,
             },
             attitude_surface: s.initial.attitude_reference
                 == crate::scenario::AttitudeReference::Surface,

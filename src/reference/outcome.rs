@@ -1,22 +1,27 @@
 //! The outcome of a touchdown (MODEL.md section 8) and the per-sample summary (section 9),
 //! gathered step by step.
 //!
-//! Decision rules, checked after every step in this order:
+//! Decision rules, checked after every step in this order (MODEL.md section 8 gives the
+//! reasons):
 //! - `diverged`: a non-finite state, or speed, body rate or penetration beyond the
 //!   thresholds of the scenario;
-//! - `tipped`: the tilt of `Z_B` from the slope normal passes 90 deg (also in flight), or
-//!   the CG is beyond an edge of the support polygon (the vertical through the CG outside
-//!   the edge between two neighbouring footpads, one of them in contact) while rotating away
-//!   from it: gravity then has no way to bring it back;
+//! - `tipped`: the tilt of `Z_B` from the slope normal passes 90 deg (also in flight), or,
+//!   with `early_tipping`, the point of no return: the lander pivots on one edge of the
+//!   support polygon (both its footpads touch and stick, no other footpad touches, the
+//!   contact force is at most twice the weight), with the CG beyond that edge seen along
+//!   gravity and moving away from it;
 //! - `stable`: for `hold_time_s` without a break, CG speed and body rate below the rest
 //!   thresholds, at least three legs (all, with fewer) in contact or within `REST_GAP_M`
-//!   (1 micrometre) of it, the CG inside every edge of the support polygon;
-//! - at `t_max`: `sliding` if a leg touches the surface (and not at rest), else `bouncing`.
+//!   (1 micrometre) of it, the CG inside every edge of the support polygon, and every
+//!   footpad in contact sticking: its friction anchor within `REST_SLIP_M` (1 micrometre)
+//!   of where it was when the rest began;
+//! - at `t_max`: `stable` if at rest, else `sliding` if a leg touches the surface, else
+//!   `bouncing`.
 
 use super::model::{Model, Surface};
 use super::step::{State, StepReport};
 use glam::DVec3;
-use kernels::outcome::REST_GAP_M;
+use kernels::outcome::{REST_GAP_M, REST_SLIP_M};
 
 /// How a touchdown ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -93,6 +98,8 @@ pub struct Summary {
 pub struct Tracker {
     start_m: DVec3,
     rest_s: f64,
+    /// The friction anchor of every leg when the current rest began.
+    rest_anchor_m: Vec<DVec3>,
     min_cos_tilt: f64,
     peak_acceleration: f64,
     peak_acceleration_z: f64,
@@ -111,6 +118,7 @@ impl Tracker {
         Tracker {
             start_m: start.body.position_m,
             rest_s: 0.0,
+            rest_anchor_m: start.legs.iter().map(|l| l.anchor_m).collect(),
             min_cos_tilt: 1.0,
             peak_acceleration: 0.0,
             peak_acceleration_z: 0.0,
@@ -152,6 +160,11 @@ impl Tracker {
             resting += usize::from(leg.penetration_m > -REST_GAP_M);
             deepest = deepest.max(leg.penetration_m);
         }
+        // Every footpad on the surface still sticks where it stuck when the rest began.
+        let stuck =
+            after.legs.iter().zip(&self.rest_anchor_m).all(|(l, a)| {
+                !l.anchored || (l.anchor_m - *a).length_squared() <= REST_SLIP_M.powi(2)
+            });
         self.max_penetration = self.max_penetration.max(deepest);
         if contacts > 0 {
             self.first_contact_s.get_or_insert(report.t_s);
@@ -177,6 +190,9 @@ impl Tracker {
         // Support polygon, seen along gravity.
         let mut inside = true;
         let mut tipping = false;
+        // No impact under way: the legs push with at most twice the weight.
+        let weight_n = model.mass_kg * model.gravity_m_s2;
+        let quasi_static = report.force_n.length_squared() <= (2.0 * weight_n).powi(2);
         if !model.edges.is_empty() {
             let centroid =
                 report.legs.iter().map(|l| l.tip_m).sum::<DVec3>() / report.legs.len() as f64;
@@ -189,24 +205,34 @@ impl Tracker {
                 }
                 if outward.dot(body.position_m - a.tip_m) > 0.0 {
                     inside = false;
+                    // Pivoting on this edge alone, its footpads held by friction.
+                    let pivot = a.in_contact()
+                        && c.in_contact()
+                        && contacts == 2
+                        && !a.slipping
+                        && !c.slipping;
                     let away = outward.dot(body.velocity_m_s - a.tip_velocity_m_s) > 0.0;
-                    tipping |= away && (a.in_contact() || c.in_contact());
+                    tipping |= pivot && away && quasi_static;
                 }
             }
         }
-        if cos_tilt < 0.0 || tipping {
+        if cos_tilt < 0.0 || (th.early_tipping && tipping) {
             return Some(Outcome::Tipped);
         }
 
         let at_rest = body.velocity_m_s.length_squared() < th.rest_speed_m_s.powi(2)
             && body.rate_rad_s.length_squared() < th.rest_rate_rad_s.powi(2)
             && resting >= model.legs.len().min(3)
+            && stuck
             && inside;
-        self.rest_s = if at_rest {
-            self.rest_s + report.dt_s
+        if at_rest {
+            self.rest_s += report.dt_s;
         } else {
-            0.0
-        };
+            self.rest_s = 0.0;
+            for (a, l) in self.rest_anchor_m.iter_mut().zip(&after.legs) {
+                *a = l.anchor_m;
+            }
+        }
         if self.rest_s >= th.hold_time_s {
             return Some(Outcome::Stable);
         }

@@ -26,6 +26,8 @@ pub struct LegReport {
     pub penetration_m: f64,
     pub normal_n: f64,
     pub friction_n: f64,
+    /// Whether the footpad slips (in contact, friction at its cap).
+    pub slipping: bool,
     /// Damper stroke after the step, m.
     pub stroke_m: f64,
 }
@@ -106,6 +108,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
                 force_n: DVec3::ZERO,
                 normal_n: 0.0,
                 friction_n: 0.0,
+                slipping: false,
             }
         };
         force_n += f.force_n;
@@ -116,6 +119,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
             penetration_m: penetration,
             normal_n: f.normal_n,
             friction_n: f.friction_n,
+            slipping: f.slipping,
             stroke_m: leg_state.stroke_m,
         };
     }

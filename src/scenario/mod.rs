@@ -329,6 +329,9 @@ pub struct Outcome {
     pub diverged_speed_m_s: f64,
     pub diverged_rate_deg_s: f64,
     pub diverged_penetration_m: f64,
+    /// Decide `tipped` at the point of no return (MODEL.md section 8) instead of only when
+    /// the tilt passes 90 deg.
+    pub early_tipping: bool,
 }
 
 /// A complete, validated scenario.
@@ -435,6 +438,7 @@ impl Default for Scenario {
                 diverged_speed_m_s: 100.0,
                 diverged_rate_deg_s: 3600.0,
                 diverged_penetration_m: 0.5,
+                early_tipping: true,
             },
         }
     }
@@ -951,6 +955,7 @@ fn read_outcome(top: &mut Reader, d: &Outcome) -> Result<Outcome, ScenarioError>
         diverged_speed_m_s: r.positive("diverged_speed_m_s", d.diverged_speed_m_s)?,
         diverged_rate_deg_s: r.positive("diverged_rate_deg_s", d.diverged_rate_deg_s)?,
         diverged_penetration_m: r.positive("diverged_penetration_m", d.diverged_penetration_m)?,
+        early_tipping: r.bool("early_tipping", d.early_tipping)?,
     };
     r.finish()?;
     Ok(o)
