@@ -6,6 +6,7 @@
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
 use kernels::block::Block;
+use kernels::isa::{Isa, Kernel, WithKernel};
 use kernels::lane::LANES;
 use std::hint::black_box;
 use touchdown::reference::model::Surface;
@@ -21,28 +22,47 @@ const STEPS: u64 = 1000;
 fn kernel_vs_reference(c: &mut Criterion) {
     let scenario = Scenario::default();
     let model = Model::new(&scenario);
-    let params = kernel_params(&model);
     let samples: Vec<_> = (0..LANES as u64).map(|i| sample(&scenario, i)).collect();
-    let mut block = Block::new(&params);
-    for (i, s) in samples.iter().enumerate() {
-        block.load(i, &lane_init(&model, s));
-    }
 
     let mut g = c.benchmark_group("step");
     g.throughput(Throughput::Elements(LANES as u64 * STEPS));
-    g.bench_function(format!("kernel_{}", kernels::lane::LANE_NAME), |b| {
-        b.iter_batched_ref(
-            || block.clone(),
-            |blk| {
-                for _ in 0..STEPS {
-                    let dt = kernels::step::step_size(&params, blk);
-                    kernels::step::step(&params, blk, dt);
-                    black_box(kernels::outcome::observe(&params, blk));
-                }
-            },
-            BatchSize::SmallInput,
-        );
-    });
+    // Every kernel this CPU runs, on the same states.
+    struct Bench<'a, 'b> {
+        group: &'a mut criterion::BenchmarkGroup<'b, criterion::measurement::WallTime>,
+        model: &'a Model,
+        samples: &'a [touchdown::sampling::Sample],
+        key: &'static str,
+    }
+    impl WithKernel for Bench<'_, '_> {
+        type Output = ();
+        fn run<K: Kernel>(self) {
+            let params = kernel_params::<K>(self.model);
+            let mut block = Block::new(&params);
+            for (i, s) in self.samples.iter().enumerate() {
+                block.load(i, &lane_init(self.model, s));
+            }
+            self.group
+                .bench_function(format!("kernel_f64x8_{}", self.key), |b| {
+                    b.iter_batched_ref(
+                        || block.clone(),
+                        |blk| {
+                            for _ in 0..STEPS {
+                                black_box(K::advance(&params, blk));
+                            }
+                        },
+                        BatchSize::SmallInput,
+                    );
+                });
+        }
+    }
+    for isa in Isa::ALL.into_iter().filter(|i| i.available()) {
+        isa.dispatch(Bench {
+            group: &mut g,
+            model: &model,
+            samples: &samples,
+            key: isa.key(),
+        });
+    }
     let starts: Vec<_> = samples
         .iter()
         .map(|s| {

@@ -8,6 +8,7 @@ use crate::sampling::{self, Sample};
 use crate::scenario::{DEFAULT_TOML, INPUT_FIELDS, Scenario};
 use crate::sweep::Shard;
 use clap::{Parser, Subcommand};
+use kernels::isa::Isa;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -77,6 +78,46 @@ pub struct SweepArgs {
     /// array numbers its tasks); `touchdown merge` joins the N files.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<Shard>,
+    /// SIMD kernel: `auto` picks the widest this CPU runs (avx512, then avx2, then
+    /// portable). avx512 and avx2 give the same bits; portable on x86-64 rounds its
+    /// multiply-adds apart (no FMA there) and differs from them in the last bits.
+    #[arg(long, value_name = "KERNEL", default_value = "auto", value_parser = parse_kernel)]
+    pub kernel: KernelChoice,
+}
+
+/// The kernel a sweep runs with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KernelChoice {
+    /// The widest this CPU runs.
+    Auto,
+    /// This one.
+    Isa(Isa),
+}
+
+impl KernelChoice {
+    /// The instruction set to run: refused, naming what the CPU lacks, if it cannot.
+    pub fn isa(self) -> anyhow::Result<Isa> {
+        match self {
+            KernelChoice::Auto => Ok(Isa::detect()),
+            KernelChoice::Isa(isa) if isa.available() => Ok(isa),
+            KernelChoice::Isa(isa) => anyhow::bail!(
+                "--kernel {}: this CPU cannot run it (it lacks {}); --kernel auto picks {}",
+                isa.key(),
+                isa.missing_features().join(", "),
+                Isa::detect().key()
+            ),
+        }
+    }
+}
+
+fn parse_kernel(s: &str) -> Result<KernelChoice, String> {
+    if s == "auto" {
+        return Ok(KernelChoice::Auto);
+    }
+    Isa::from_key(s).map(KernelChoice::Isa).ok_or_else(|| {
+        let keys: Vec<&str> = Isa::ALL.iter().map(|i| i.key()).collect();
+        format!("{s:?} is not a kernel: auto, {}", keys.join(", "))
+    })
 }
 
 /// Flags of `touchdown report`.
@@ -273,6 +314,8 @@ struct SweepPlan {
     shard: Option<Shard>,
     format: crate::output::sweep::Format,
     out: PathBuf,
+    /// The kernel it runs with.
+    isa: Isa,
     /// The interrupted sweep whose first rows this one takes over.
     resume: Option<crate::output::resume::Interrupted>,
 }
@@ -281,12 +324,16 @@ impl SweepPlan {
     fn new(args: &SweepArgs) -> anyhow::Result<SweepPlan> {
         if let Some(out) = &args.resume {
             let from = crate::output::resume::Interrupted::read(out)?;
-            if from.lane_type != kernels::lane::LANE_NAME {
+            let isa = args.kernel.isa()?;
+            if from.lane_type != isa.arithmetic() {
                 anyhow::bail!(
-                    "{} was computed with {} kernels, this build has {}: run the sweep again",
+                    "{} was computed with {} kernels, the {} kernel here is {}, whose rows \
+                     differ in the last bits: resume it on a machine like the first, or run \
+                     the sweep again",
                     from.path.display(),
                     from.lane_type,
-                    kernels::lane::LANE_NAME
+                    isa.name(),
+                    isa.arithmetic()
                 );
             }
             let mut scenario = Scenario::from_toml(&from.scenario_toml)
@@ -300,6 +347,7 @@ impl SweepPlan {
                 shard: from.shard,
                 format: from.format,
                 out: out.clone(),
+                isa,
                 resume: Some(from),
             });
         }
@@ -316,6 +364,7 @@ impl SweepPlan {
             shard: args.shard,
             format: args.format,
             out: args.out.clone(),
+            isa: args.kernel.isa()?,
             resume: None,
         })
     }
@@ -370,17 +419,21 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         scenario_toml: &plan.text,
         seed: scenario.seed,
         samples,
-        lane_type: kernels::lane::LANE_NAME,
+        lane_type: plan.isa.arithmetic(),
         shard: plan.shard,
     };
     let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?;
     eprintln!(
-        "touchdown sweep: {} samples, seed {}, kernel {} {} ({} landers per block), {threads} thread{}{shard_note}{resume_note}",
+        "touchdown sweep: {} samples, seed {}, kernel {} ({} landers per block{}), {threads} thread{}{shard_note}{resume_note}",
         range.end - range.start,
         scenario.seed,
-        kernels::lane::LANE_NAME,
-        kernels::lane::INSTRUCTION_SET,
+        plan.isa.name(),
         kernels::lane::LANES,
+        if matches!(args.kernel, KernelChoice::Auto) {
+            "; the widest this CPU runs"
+        } else {
+            ""
+        },
         if threads == 1 { "" } else { "s" },
     );
     let mut counts = [0u64; Outcome::ALL.len()];
@@ -407,15 +460,23 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     let start = std::time::Instant::now();
     let mut computed = 0u64;
     let ran = pool.install(|| {
-        crate::sweep::run_until(scenario, &model, todo.clone(), CHUNK, &stop, |rows| {
-            for r in &rows {
-                counts[r.summary.outcome as usize] += 1;
-                steps += r.summary.steps;
-            }
-            computed += rows.len() as u64;
-            bar.inc(rows.len() as u64);
-            writer.push(rows)
-        })
+        crate::sweep::run_until(
+            scenario,
+            &model,
+            plan.isa,
+            todo.clone(),
+            CHUNK,
+            &stop,
+            |rows| {
+                for r in &rows {
+                    counts[r.summary.outcome as usize] += 1;
+                    steps += r.summary.steps;
+                }
+                computed += rows.len() as u64;
+                bar.inc(rows.len() as u64);
+                writer.push(rows)
+            },
+        )
     })?;
     bar.finish_and_clear();
     if ran.end < todo.end {

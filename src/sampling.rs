@@ -4,6 +4,10 @@
 //! and `i`, then draws the inputs in the fixed order of `INPUT_FIELDS`, then its terrain
 //! tile and offset. No state is shared between samples, so threads, shards and resumption
 //! cannot change a sample, and any sample can be replayed alone.
+//!
+//! Logarithms and cosines come from the `libm` crate (pure Rust), not the C library, whose
+//! versions differ in the last bit between CPUs with and without FMA: a sample's inputs are
+//! the same bits on every machine.
 
 use crate::scenario::{Dist, INPUT_FIELDS, Inputs, Scenario};
 use rand_core::{RngCore, SeedableRng};
@@ -46,7 +50,7 @@ pub fn uniform01(rng: &mut impl RngCore) -> f64 {
 pub fn standard_normal(rng: &mut impl RngCore) -> f64 {
     let u1 = 1.0 - uniform01(rng); // in (0, 1]: the logarithm stays finite
     let u2 = uniform01(rng);
-    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+    (-2.0 * libm::log(u1)).sqrt() * libm::cos(std::f64::consts::TAU * u2)
 }
 
 /// Draws one value of `dist`; `grid_index` is this input's coordinate on its grid.

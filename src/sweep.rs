@@ -14,7 +14,8 @@ use crate::sampling::{self, Sample};
 use crate::scenario::Scenario;
 use glam::{DQuat, DVec3};
 use kernels::block::{Block, LaneInit};
-use kernels::lane::{LANES, mask_to};
+use kernels::isa::{Isa, Kernel, WithKernel};
+use kernels::lane::{LANES, Lane};
 use kernels::params::{HoneycombParams, LegParams, Params, lane};
 use kernels::vec3::Vec3;
 use rayon::prelude::*;
@@ -97,7 +98,7 @@ impl LaneStats {
 
 /// The kernels' parameters of a model, broadcast to lanes.
 #[must_use]
-pub fn kernel_params(m: &Model) -> Params {
+pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
     let v = |d: DVec3| Vec3::splat(d.to_array());
     Params {
         gravity_m_s2: lane(m.gravity_m_s2),
@@ -163,8 +164,8 @@ pub fn lane_init(model: &Model, sample: &Sample) -> LaneInit {
 }
 
 /// The summary of the sample decided in lane `i` (the reference's `Tracker::finish`).
-fn lane_summary(block: &Block, i: usize) -> Summary {
-    let at = |l: &kernels::lane::Lane| l.as_array()[i];
+fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
+    let at = |l: &L| l.as_array()[i];
     let t = &block.track;
     let normal = DVec3::from_array(block.surface.normal.lane(i));
     let attitude = DQuat::from_array(block.attitude.lane(i));
@@ -177,8 +178,8 @@ fn lane_summary(block: &Block, i: usize) -> Summary {
         outcome: Outcome::ALL[at(&t.outcome) as usize],
         decided_s: at(&block.t_s),
         steps: at(&t.steps) as u64,
-        final_tilt_deg: finite_or_zero(cos_tilt.clamp(-1.0, 1.0).acos().to_degrees()),
-        max_tilt_deg: at(&t.min_cos_tilt).clamp(-1.0, 1.0).acos().to_degrees(),
+        final_tilt_deg: finite_or_zero(libm::acos(cos_tilt.clamp(-1.0, 1.0)).to_degrees()),
+        max_tilt_deg: libm::acos(at(&t.min_cos_tilt).clamp(-1.0, 1.0)).to_degrees(),
         displacement_m: finite_or_zero(along.length()),
         peak_acceleration_m_s2: finite_or_zero(at(&t.peak_acceleration_squared).sqrt()),
         peak_acceleration_z_body_m_s2: finite_or_zero(at(&t.peak_acceleration_z)),
@@ -197,10 +198,20 @@ fn lane_summary(block: &Block, i: usize) -> Summary {
     }
 }
 
+/// A value alone in its pair of cache lines: x86 cores fetch lines in pairs of 128 bytes,
+/// so a line that one thread writes slows the threads that read the other line of its pair
+/// as if they shared it (measured: 20 % of a two-thread sweep, when a counter the threads
+/// write sat beside the parameters they read at every step).
+#[repr(align(128))]
+struct Padded<T>(T);
+
 /// One block and the samples its lanes hold: a worker's state, kept from one window to the
-/// next so that a block never waits, half empty, for the last samples of a window.
-struct Worker {
-    block: Block,
+/// next so that a block never waits, half empty, for the last samples of a window. Aligned
+/// to 128 bytes: the workers of two threads sit side by side, and x86 cores fetch cache
+/// lines in pairs (see `kernels::block::LegLanes`).
+#[repr(align(128))]
+struct Worker<L> {
+    block: Block<L>,
     samples: [Option<Sample>; LANES],
 }
 
@@ -232,8 +243,8 @@ impl Feed<'_> {
     }
 }
 
-impl Worker {
-    fn new(params: &Params) -> Worker {
+impl<K: Kernel> Worker<K> {
+    fn new(params: &Params<K>) -> Worker<K> {
         Worker {
             block: Block::new(params),
             samples: [None; LANES],
@@ -260,7 +271,7 @@ impl Worker {
         &mut self,
         scenario: &Scenario,
         model: &Model,
-        params: &Params,
+        params: &Params<K>,
         feed: &Feed,
     ) -> (Vec<Row>, LaneStats) {
         let mut rows = Vec::new();
@@ -271,18 +282,16 @@ impl Worker {
             }
         }
         while feed.outstanding.load(Ordering::Relaxed) > 0 {
-            let busy = self.block.active.to_bitmask().count_ones() as u64;
+            let busy = self.block.busy_lanes() as u64;
             if busy == 0 {
                 break;
             }
             stats.busy_lane_steps += busy;
             stats.lane_steps += LANES as u64;
-            let dt = kernels::step::step_size(params, &self.block);
-            kernels::step::step(params, &mut self.block, dt);
-            let decided = kernels::outcome::observe(params, &mut self.block);
-            if decided.to_bitmask() != 0 {
-                for (i, done) in mask_to(decided).into_iter().enumerate() {
-                    if done {
+            let decided = K::advance(params, &mut self.block);
+            if decided != 0 {
+                for i in 0..LANES {
+                    if decided & (1 << i) != 0 {
                         let sample = self.samples[i].expect("a decided lane holds a sample");
                         if sample.index < feed.window_end {
                             feed.outstanding.fetch_sub(1, Ordering::Relaxed);
@@ -309,14 +318,9 @@ pub struct Ran {
     pub end: u64,
 }
 
-/// Runs `range` on the current rayon pool, one worker (one block) per thread, handing rows
-/// to `sink` a window of `4 * chunk` samples per thread at a time, in sample order. Stops
-/// early when `sink` returns an error.
-///
-/// The workers take samples one at a time from a shared counter. Once the samples of a
-/// window run out, lanes go on to those of the next window while the last samples of this
-/// one finish; their rows are kept for the next window. Memory holds two windows of rows
-/// whatever the sample count.
+/// Runs `range` on the current rayon pool with the widest kernel this CPU has, one worker
+/// (one block) per thread, handing rows to `sink` a window of `4 * chunk` samples per
+/// thread at a time, in sample order. Stops early when `sink` returns an error.
 pub fn run(
     scenario: &Scenario,
     model: &Model,
@@ -325,134 +329,187 @@ pub fn run(
     sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
 ) -> anyhow::Result<LaneStats> {
     let never = AtomicUsize::new(0);
-    Ok(run_until(scenario, model, range, chunk, &never, sink)?.stats)
+    Ok(run_until(scenario, model, Isa::detect(), range, chunk, &never, sink)?.stats)
 }
 
-/// `run`, until `stop` becomes nonzero: then no lane takes another sample, the samples in
-/// the lanes finish, and the rows of the unbroken run of samples from the start of the
-/// range go to `sink` (a later sample whose predecessors did not all finish is dropped).
+/// `run` with the kernel of `isa` (which this CPU must have), until `stop` becomes nonzero:
+/// then no lane takes another sample, the samples in the lanes finish, and the rows of the
+/// unbroken run of samples from the start of the range go to `sink` (a later sample whose
+/// predecessors did not all finish is dropped).
+///
+/// The workers take samples one at a time from a shared counter. Once the samples of a
+/// window run out, lanes go on to those of the next window while the last samples of this
+/// one finish; their rows are kept for the next window. Memory holds two windows of rows
+/// whatever the sample count.
 pub fn run_until(
     scenario: &Scenario,
     model: &Model,
+    isa: Isa,
     range: Range<u64>,
     chunk: u64,
     stop: &AtomicUsize,
-    mut sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
+    sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
 ) -> anyhow::Result<Ran> {
-    let params = kernel_params(model);
-    let threads = rayon::current_num_threads();
-    let window = chunk.max(1) * 4 * threads as u64;
-    let mut workers: Vec<Worker> = (0..threads).map(|_| Worker::new(&params)).collect();
-    let next = AtomicU64::new(range.start);
-    let mut carried: Vec<Row> = Vec::new();
-    let mut stats = LaneStats::default();
-    let mut start = range.start;
-    while start < range.end {
-        let end = start.saturating_add(window).min(range.end);
-        let done = carried.len() as u64;
-        let outstanding = AtomicU64::new(end - start - done);
-        let feed = Feed {
+    isa.dispatch(Sweep {
+        scenario,
+        model,
+        range,
+        chunk,
+        stop,
+        sink,
+    })
+}
+
+/// The arguments of `run_until`, to run with the kernel `dispatch` picks.
+struct Sweep<'a, F> {
+    scenario: &'a Scenario,
+    model: &'a Model,
+    range: Range<u64>,
+    chunk: u64,
+    stop: &'a AtomicUsize,
+    sink: F,
+}
+
+impl<F: FnMut(Vec<Row>) -> anyhow::Result<()>> WithKernel for Sweep<'_, F> {
+    type Output = anyhow::Result<Ran>;
+
+    fn run<K: Kernel>(self) -> anyhow::Result<Ran> {
+        let Sweep {
+            scenario,
+            model,
+            range,
+            chunk,
             stop,
-            next: &next,
-            cap: end.saturating_add(window).min(range.end),
-            window_end: end,
-            outstanding: &outstanding,
-        };
-        let results: Vec<(Vec<Row>, LaneStats)> = if outstanding.load(Ordering::Relaxed) == 0 {
-            Vec::new()
-        } else {
-            workers
-                .par_iter_mut()
-                .map(|w| w.run(scenario, model, &params, &feed))
-                .collect()
-        };
-        let mut rows = std::mem::take(&mut carried);
-        for (r, s) in results {
-            stats = stats.add(s);
-            for row in r {
-                if row.sample.index < end {
-                    rows.push(row);
-                } else {
-                    carried.push(row);
+            mut sink,
+        } = self;
+        // Read by every thread at every step: never in a pair of cache lines with the
+        // counters the threads write (see `Padded`).
+        let params = Padded(kernel_params::<K>(model));
+        let params = &params.0;
+        let threads = rayon::current_num_threads();
+        let window = chunk.max(1) * 4 * threads as u64;
+        let mut workers: Vec<Worker<K>> = (0..threads).map(|_| Worker::new(params)).collect();
+        let next = Padded(AtomicU64::new(range.start));
+        let next = &next.0;
+        let mut carried: Vec<Row> = Vec::new();
+        let mut stats = LaneStats::default();
+        let mut start = range.start;
+        while start < range.end {
+            let end = start.saturating_add(window).min(range.end);
+            let done = carried.len() as u64;
+            let outstanding = Padded(AtomicU64::new(end - start - done));
+            let outstanding = &outstanding.0;
+            let feed = Feed {
+                stop,
+                next,
+                cap: end.saturating_add(window).min(range.end),
+                window_end: end,
+                outstanding,
+            };
+            let results: Vec<(Vec<Row>, LaneStats)> = if outstanding.load(Ordering::Relaxed) == 0 {
+                Vec::new()
+            } else {
+                workers
+                    .par_iter_mut()
+                    .map(|w| w.run(scenario, model, params, &feed))
+                    .collect()
+            };
+            let mut rows = std::mem::take(&mut carried);
+            for (r, s) in results {
+                stats = stats.add(s);
+                for row in r {
+                    if row.sample.index < end {
+                        rows.push(row);
+                    } else {
+                        carried.push(row);
+                    }
                 }
             }
-        }
-        rows.sort_unstable_by_key(|r| r.sample.index);
-        if outstanding.load(Ordering::Relaxed) > 0 {
-            // Stopped: keep the unbroken run from `start`, the rows of the next window too.
-            rows.append(&mut carried);
             rows.sort_unstable_by_key(|r| r.sample.index);
-            let unbroken = rows
-                .iter()
-                .zip(start..)
-                .take_while(|(r, i)| r.sample.index == *i)
-                .count();
-            rows.truncate(unbroken);
+            if outstanding.load(Ordering::Relaxed) > 0 {
+                // Stopped: keep the unbroken run from `start`, the rows of the next window too.
+                rows.append(&mut carried);
+                rows.sort_unstable_by_key(|r| r.sample.index);
+                let unbroken = rows
+                    .iter()
+                    .zip(start..)
+                    .take_while(|(r, i)| r.sample.index == *i)
+                    .count();
+                rows.truncate(unbroken);
+                sink(rows)?;
+                return Ok(Ran {
+                    stats,
+                    end: start + unbroken as u64,
+                });
+            }
+            debug_assert_eq!(rows.len() as u64, end - start);
             sink(rows)?;
-            return Ok(Ran {
-                stats,
-                end: start + unbroken as u64,
-            });
+            start = end;
         }
-        debug_assert_eq!(rows.len() as u64, end - start);
-        sink(rows)?;
-        start = end;
+        Ok(Ran {
+            stats,
+            end: range.end,
+        })
     }
-    Ok(Ran {
-        stats,
-        end: range.end,
-    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::{LANES, Model, Outcome, Scenario, Shard, kernel_params, lane_init, lane_summary};
     use kernels::block::Block;
+    use kernels::isa::{Isa, Kernel, WithKernel};
 
     /// A lane whose state turns non-finite mid-flight ends at once as `diverged`, with
-    /// finite numbers in every result, and the lanes beside it go on untouched.
+    /// finite numbers in every result, and the lanes beside it go on untouched; with every
+    /// kernel this CPU has.
     #[test]
     fn a_lane_turned_non_finite_ends_as_diverged_without_nan_results() {
+        struct Poisoned;
+        impl WithKernel for Poisoned {
+            type Output = ();
+            fn run<K: Kernel>(self) {
+                poisoned_lane_ends_alone::<K>();
+            }
+        }
+        for isa in Isa::ALL.into_iter().filter(|i| i.available()) {
+            isa.dispatch(Poisoned);
+        }
+    }
+
+    fn poisoned_lane_ends_alone<K: Kernel>() {
         let scenario = Scenario::default();
         let model = Model::new(&scenario);
-        let params = kernel_params(&model);
-        type Poison = fn(&mut Block, usize);
-        let poisons: [(&str, Poison); 4] = [
+        let params = kernel_params::<K>(&model);
+        type Poison<K> = fn(&mut Block<K>, usize);
+        let poisons: [(&str, Poison<K>); 4] = [
             ("velocity NaN", |b, i| {
-                b.velocity_m_s.x.as_mut_array()[i] = f64::NAN
+                b.velocity_m_s.x.as_mut_array()[i] = f64::NAN;
             }),
             ("position infinite", |b, i| {
                 b.position_m.z.as_mut_array()[i] = f64::INFINITY;
             }),
             ("body rate NaN", |b, i| {
-                b.rate_rad_s.y.as_mut_array()[i] = f64::NAN
+                b.rate_rad_s.y.as_mut_array()[i] = f64::NAN;
             }),
             ("attitude NaN", |b, i| {
-                b.attitude.w.as_mut_array()[i] = f64::NAN
+                b.attitude.w.as_mut_array()[i] = f64::NAN;
             }),
         ];
         for (what, poison) in poisons {
+            let what = format!("{}: {what}", K::NAME);
             let mut block = Block::new(&params);
             for i in 0..LANES {
                 let sample = crate::sampling::sample(&scenario, i as u64);
                 block.load(i, &lane_init(&model, &sample));
             }
             for _ in 0..20 {
-                let dt = kernels::step::step_size(&params, &block);
-                kernels::step::step(&params, &mut block, dt);
-                let decided = kernels::outcome::observe(&params, &mut block);
-                assert_eq!(decided.to_bitmask(), 0, "{what}: nothing decided yet");
+                let decided = K::advance(&params, &mut block);
+                assert_eq!(decided, 0, "{what}: nothing decided yet");
             }
             let lane = 3;
             poison(&mut block, lane);
-            let dt = kernels::step::step_size(&params, &block);
-            kernels::step::step(&params, &mut block, dt);
-            let decided = kernels::outcome::observe(&params, &mut block);
-            assert_eq!(
-                decided.to_bitmask(),
-                1 << lane,
-                "{what}: only the poisoned lane ends"
-            );
+            let decided = K::advance(&params, &mut block);
+            assert_eq!(decided, 1 << lane, "{what}: only the poisoned lane ends");
             let s = lane_summary(&block, lane);
             assert_eq!(s.outcome, Outcome::Diverged, "{what}");
             let mut numbers = vec![

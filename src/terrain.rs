@@ -51,7 +51,7 @@ fn gaussian_kernel(sigma: f64, n: usize) -> Vec<f64> {
     let mut k: Vec<f64> = (0..=2 * reach)
         .map(|i| {
             let x = i as f64 - reach as f64;
-            (-0.5 * x * x / (sigma * sigma)).exp()
+            libm::exp(-0.5 * x * x / (sigma * sigma))
         })
         .collect();
     let sum: f64 = k.iter().sum();

@@ -1,5 +1,7 @@
 //! Every sample of a batched (SIMD) run against the same sample run alone by the scalar
-//! reference (MODEL.md section 12, last check), over several scenarios.
+//! reference (MODEL.md section 12, last check), over several scenarios, with every kernel
+//! this CPU runs; and the kernels that fuse their multiply-adds (AVX-512, AVX2) against each
+//! other, bit for bit.
 //!
 //! The kernels compute the same formulas in the same order, but not with the same rounding
 //! (fused multiply-adds, another association of sums). A touchdown is chaotic, mostly
@@ -10,54 +12,86 @@
 //! ended at a decision boundary (a decided time within 1 % of the other's). Continuous
 //! results of agreeing samples must agree within the tolerances below.
 
+use kernels::isa::Isa;
+use std::sync::atomic::AtomicUsize;
 use touchdown::reference::{self, Model, Outcome, Summary};
-use touchdown::sampling::Sample;
+use touchdown::sampling::{self, Sample};
 use touchdown::scenario::Scenario;
 use touchdown::sweep;
 
-/// Runs `n` samples both ways; returns (samples, outcome disagreements, unexplained, drifted).
-fn compare(name: &str, scenario: &Scenario, n: u64) -> (u64, u64, u64, u64) {
+/// Runs `n` samples through the reference and through every kernel this CPU has; returns,
+/// per kernel, (samples, outcome disagreements, unexplained, drifted). Kernels that fuse
+/// their multiply-adds must give the same rows, bit for bit.
+fn compare(name: &str, scenario: &Scenario, n: u64) -> Vec<(Isa, [u64; 4])> {
     let model = Model::new(scenario);
-    let mut rows = Vec::new();
-    sweep::run(scenario, &model, 0..n, 256, |r| {
-        rows.extend(r);
-        Ok(())
-    })
-    .unwrap();
-    assert_eq!(rows.len() as u64, n, "{name}: every sample comes back once");
-    let (mut disagree, mut unexplained, mut drifted) = (0, 0, 0);
-    let mut worst = [0.0f64; 4];
-    for (i, row) in rows.iter().enumerate() {
-        assert_eq!(row.sample.index, i as u64, "{name}: rows in sample order");
-        let r = reference::run(&model, &row.sample, |_| {});
-        let k = &row.summary;
-        if r.outcome != k.outcome {
-            disagree += 1;
-            let explained = near_threshold(&model, &row.sample, k.outcome);
-            if !explained {
-                unexplained += 1;
-            }
-            println!(
-                "{name}: sample {i}: reference {} at {:.3} s, kernel {} at {:.3} s -> {}",
-                r.outcome.name(),
-                r.decided_s,
-                k.outcome.name(),
-                k.decided_s,
-                if explained {
-                    "near a threshold"
-                } else {
-                    "UNEXPLAINED"
+    let samples: Vec<Sample> = (0..n).map(|i| sampling::sample(scenario, i)).collect();
+    let reference: Vec<Summary> = samples
+        .iter()
+        .map(|s| reference::run(&model, s, |_| {}))
+        .collect();
+    let mut fused_rows: Option<(Isa, Vec<String>)> = None;
+    let mut out = Vec::new();
+    for isa in Isa::ALL.into_iter().filter(|i| i.available()) {
+        let mut rows = Vec::new();
+        let never = AtomicUsize::new(0);
+        sweep::run_until(scenario, &model, isa, 0..n, 256, &never, |r| {
+            rows.extend(r);
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(rows.len() as u64, n, "{name}: every sample comes back once");
+        if isa.fused() {
+            let bits: Vec<String> = rows.iter().map(|r| format!("{:?}", r.summary)).collect();
+            match &fused_rows {
+                None => fused_rows = Some((isa, bits)),
+                Some((first, first_bits)) => {
+                    let differ = bits.iter().zip(first_bits).filter(|(a, b)| a != b).count();
+                    assert_eq!(
+                        differ,
+                        0,
+                        "{name}: {} rows of the {} kernel differ from the {} kernel's",
+                        differ,
+                        isa.key(),
+                        first.key()
+                    );
                 }
-            );
-            continue;
+            }
         }
-        drifted += u64::from(check_close(name, i, &r, k, &mut worst));
+        let name = format!("{name}, kernel {}", isa.key());
+        let (mut disagree, mut unexplained, mut drifted) = (0, 0, 0);
+        let mut worst = [0.0f64; 4];
+        for (i, (row, r)) in rows.iter().zip(&reference).enumerate() {
+            assert_eq!(row.sample.index, i as u64, "{name}: rows in sample order");
+            let k = &row.summary;
+            if r.outcome != k.outcome {
+                disagree += 1;
+                let explained = near_threshold(&model, &row.sample, k.outcome);
+                if !explained {
+                    unexplained += 1;
+                }
+                println!(
+                    "{name}: sample {i}: reference {} at {:.3} s, kernel {} at {:.3} s -> {}",
+                    r.outcome.name(),
+                    r.decided_s,
+                    k.outcome.name(),
+                    k.decided_s,
+                    if explained {
+                        "near a threshold"
+                    } else {
+                        "UNEXPLAINED"
+                    }
+                );
+                continue;
+            }
+            drifted += u64::from(check_close(&name, i, r, k, &mut worst));
+        }
+        println!(
+            "{name}: {n} samples, {disagree} outcome disagreements ({unexplained} unexplained), {drifted} drifted; worst agreeing |diff|: decided {:.2e} s, max tilt {:.2e} deg, peak accel {:.2e} (relative), stroke {:.2e} m",
+            worst[0], worst[1], worst[2], worst[3]
+        );
+        out.push((isa, [n, disagree, unexplained, drifted]));
     }
-    println!(
-        "{name}: {n} samples, {disagree} outcome disagreements ({unexplained} unexplained), {drifted} drifted; worst agreeing |diff|: decided {:.2e} s, max tilt {:.2e} deg, peak accel {:.2e} (relative), stroke {:.2e} m",
-        worst[0], worst[1], worst[2], worst[3]
-    );
-    (n, disagree, unexplained, drifted)
+    out
 }
 
 /// Whether the reference, nudged slightly, can reach `other` too.
@@ -133,27 +167,31 @@ fn kernels_agree_with_the_reference() {
             1000,
         ),
     ];
-    let (mut total, mut disagree, mut unexplained, mut drifted) = (0, 0, 0, 0);
+    let mut totals: Vec<(Isa, [u64; 4])> = Vec::new();
     for (name, s, n) in &cases {
-        let (t, d, u, x) = compare(name, s, *n);
-        total += t;
-        disagree += d;
-        unexplained += u;
-        drifted += x;
+        for (isa, counts) in compare(name, s, *n) {
+            match totals.iter_mut().find(|(i, _)| *i == isa) {
+                Some((_, t)) => t.iter_mut().zip(counts).for_each(|(a, b)| *a += b),
+                None => totals.push((isa, counts)),
+            }
+        }
     }
-    println!(
-        "all: {total} samples, {disagree} disagreements, {unexplained} unexplained, {drifted} drifted"
-    );
-    assert!(
-        drifted * 50 <= total,
-        "{drifted} of {total} samples drifted: more than 2 %"
-    );
-    assert_eq!(
-        unexplained, 0,
-        "every outcome disagreement must sit at a decision threshold"
-    );
-    assert!(
-        disagree * 200 <= total,
-        "{disagree} of {total} outcomes disagree: more than 0.5 % is not rounding"
-    );
+    for (isa, [total, disagree, unexplained, drifted]) in totals {
+        let isa = isa.key();
+        println!(
+            "kernel {isa}: {total} samples, {disagree} disagreements, {unexplained} unexplained, {drifted} drifted"
+        );
+        assert!(
+            drifted * 50 <= total,
+            "kernel {isa}: {drifted} of {total} samples drifted: more than 2 %"
+        );
+        assert_eq!(
+            unexplained, 0,
+            "kernel {isa}: every outcome disagreement must sit at a decision threshold"
+        );
+        assert!(
+            disagree * 200 <= total,
+            "kernel {isa}: {disagree} of {total} outcomes disagree: more than 0.5 % is not rounding"
+        );
+    }
 }

@@ -3,6 +3,7 @@
 mod agreement;
 mod cli;
 mod common;
+mod cpus;
 mod interrupt;
 mod outcome_rules;
 mod plot;

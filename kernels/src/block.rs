@@ -1,99 +1,107 @@
 //! The state of `LANES` landers, field per field (structure of arrays), with the surface
 //! each lane lands on and what its outcome tracking remembers.
 
-use crate::lane::{LANES, Lane, all_false, splat};
-use crate::params::Params;
-use crate::vec3::{Mat3, Quat, Vec3};
+use crate::lane::{LANES, Lane, all_false};
+use crate::params::{Params, lane};
+use crate::vec3::{Mat3, Quat, Vec3, mat3_of};
 
 /// What a leg remembers between steps, per lane.
+///
+/// Aligned to 128 bytes, as `LegStep`: each block keeps its legs in heap buffers of its
+/// own, and the buffers of the blocks of two threads must not meet within a 128-byte pair
+/// of cache lines, which x86 cores fetch together (writes to one line of a pair by one core
+/// and the other by another then cost like writes to a shared line: measured 20 % of a
+/// two-thread sweep).
 #[derive(Debug, Clone, Copy)]
+#[repr(C, align(128))]
 #[allow(missing_docs)]
-pub struct LegLanes {
-    pub stroke_m: Lane,
-    pub absorbed_j: Lane,
-    pub anchor_m: Vec3,
+pub struct LegLanes<L> {
+    pub stroke_m: L,
+    pub absorbed_j: L,
+    pub anchor_m: Vec3<L>,
     /// Mask: the friction anchor is set (the leg touched in the previous step).
-    pub anchored: Lane,
+    pub anchored: L,
     /// The friction anchor when the current rest began (see `outcome`).
-    pub rest_anchor_m: Vec3,
-    pub peak_normal_n: Lane,
+    pub rest_anchor_m: Vec3<L>,
+    pub peak_normal_n: L,
 }
 
-/// One leg during the current step, for the outcome tracking.
+/// One leg during the current step, for the outcome tracking (aligned as `LegLanes`).
 #[derive(Debug, Clone, Copy)]
+#[repr(C, align(128))]
 #[allow(missing_docs)]
-pub struct LegStep {
-    pub tip_m: Vec3,
-    pub tip_velocity_m_s: Vec3,
-    pub penetration_m: Lane,
-    pub normal_n: Lane,
+pub struct LegStep<L> {
+    pub tip_m: Vec3<L>,
+    pub tip_velocity_m_s: Vec3<L>,
+    pub penetration_m: L,
+    pub normal_n: L,
     /// Mask: the footpad slips (in contact, friction at its cap).
-    pub slipping: Lane,
+    pub slipping: L,
 }
 
 /// The surface of each lane.
 #[derive(Debug, Clone, Copy)]
 #[allow(missing_docs)]
-pub struct SurfaceLanes {
-    pub normal: Vec3,
-    pub tangent_u: Vec3,
-    pub tangent_v: Vec3,
-    pub offset_u_m: Lane,
-    pub offset_v_m: Lane,
+pub struct SurfaceLanes<L> {
+    pub normal: Vec3<L>,
+    pub tangent_u: Vec3<L>,
+    pub tangent_v: Vec3<L>,
+    pub offset_u_m: L,
+    pub offset_v_m: L,
     pub tile: [usize; LANES],
 }
 
 /// What the outcome tracking remembers, per lane.
 #[derive(Debug, Clone, Copy)]
 #[allow(missing_docs)]
-pub struct Track {
-    pub start_m: Vec3,
-    pub rest_s: Lane,
-    pub min_cos_tilt: Lane,
+pub struct Track<L> {
+    pub start_m: Vec3<L>,
+    pub rest_s: L,
+    pub min_cos_tilt: L,
     /// The squared peak contact acceleration (its root, taken once at the end, is the
     /// peak of the roots).
-    pub peak_acceleration_squared: Lane,
-    pub peak_acceleration_z: Lane,
-    pub bounces: Lane,
+    pub peak_acceleration_squared: L,
+    pub peak_acceleration_z: L,
+    pub bounces: L,
     /// Mask: touched since the last lift-off.
-    pub touched: Lane,
+    pub touched: L,
     /// Time of first contact, NaN until then.
-    pub first_contact_s: Lane,
-    pub max_penetration: Lane,
-    pub steps: Lane,
+    pub first_contact_s: L,
+    pub max_penetration: L,
+    pub steps: L,
     /// Outcome code once decided (see `outcome`), -1 before.
-    pub outcome: Lane,
+    pub outcome: L,
 }
 
 /// `LANES` landers.
 #[derive(Debug, Clone)]
 #[allow(missing_docs)]
-pub struct Block {
-    pub t_s: Lane,
-    pub position_m: Vec3,
-    pub velocity_m_s: Vec3,
-    pub attitude: Quat,
+pub struct Block<L> {
+    pub t_s: L,
+    pub position_m: Vec3<L>,
+    pub velocity_m_s: Vec3<L>,
+    pub attitude: Quat<L>,
     /// The rotation matrix of `attitude`, kept with it (by `step` and `load`) so that
     /// `step_size`, `step` and `observe` do not each rebuild it.
-    pub rotation: Mat3,
-    pub rate_rad_s: Vec3,
-    pub legs: Vec<LegLanes>,
-    pub surface: SurfaceLanes,
-    pub track: Track,
+    pub rotation: Mat3<L>,
+    pub rate_rad_s: Vec3<L>,
+    pub legs: Vec<LegLanes<L>>,
+    pub surface: SurfaceLanes<L>,
+    pub track: Track<L>,
     /// Mask: the lane holds a sample.
-    pub active: Lane,
+    pub active: L,
     /// The current step of every leg (scratch, overwritten by every step).
-    pub leg_step: Vec<LegStep>,
+    pub leg_step: Vec<LegStep<L>>,
     /// Contact force (I) and moment (B) of the current step, and the body at its start.
-    pub force_n: Vec3,
-    pub moment_n_m: Vec3,
-    pub start_position_m: Vec3,
-    pub start_velocity_m_s: Vec3,
+    pub force_n: Vec3<L>,
+    pub moment_n_m: Vec3<L>,
+    pub start_position_m: Vec3<L>,
+    pub start_velocity_m_s: Vec3<L>,
     /// `Z_B` in I at the start of the step (the third column of its rotation).
-    pub start_z_body: Vec3,
-    pub start_rate_rad_s: Vec3,
-    pub start_t_s: Lane,
-    pub dt_s: Lane,
+    pub start_z_body: Vec3<L>,
+    pub start_rate_rad_s: Vec3<L>,
+    pub start_t_s: L,
+    pub dt_s: L,
 }
 
 /// The initial state of one lane (computed outside the kernels, where trigonometry is fine).
@@ -112,11 +120,13 @@ pub struct LaneInit {
     pub tile: usize,
 }
 
-impl Block {
+impl<L: Lane> Block<L> {
     /// A block with every lane empty.
     #[must_use]
-    pub fn new(params: &Params) -> Block {
-        let zero = splat(0.0);
+    pub fn new(params: &Params<L>) -> Block<L> {
+        // Through memory only (see `params::lane`).
+        let zero = L::ZERO;
+        let one = lane(1.0);
         let leg = LegLanes {
             stroke_m: zero,
             absorbed_j: zero,
@@ -136,14 +146,18 @@ impl Block {
             x: zero,
             y: zero,
             z: zero,
-            w: splat(1.0),
+            w: one,
         };
         Block {
             t_s: zero,
             position_m: Vec3::ZERO,
             velocity_m_s: Vec3::ZERO,
             attitude: identity,
-            rotation: identity.to_mat3(),
+            rotation: Mat3 {
+                x_axis: Vec3::new(one, zero, zero),
+                y_axis: Vec3::new(zero, one, zero),
+                z_axis: Vec3::new(zero, zero, one),
+            },
             rate_rad_s: Vec3::ZERO,
             legs: vec![leg; params.legs.len()],
             surface: SurfaceLanes {
@@ -157,15 +171,15 @@ impl Block {
             track: Track {
                 start_m: Vec3::ZERO,
                 rest_s: zero,
-                min_cos_tilt: splat(1.0),
+                min_cos_tilt: one,
                 peak_acceleration_squared: zero,
                 peak_acceleration_z: zero,
                 bounces: zero,
                 touched: all_false(),
-                first_contact_s: splat(f64::NAN),
+                first_contact_s: lane(f64::NAN),
                 max_penetration: zero,
                 steps: zero,
-                outcome: splat(-1.0),
+                outcome: lane(-1.0),
             },
             active: all_false(),
             leg_step: vec![leg_step; params.legs.len()],
@@ -182,13 +196,12 @@ impl Block {
 
     /// Puts a new sample into lane `i`.
     pub fn load(&mut self, i: usize, init: &LaneInit) {
-        let set = |l: &mut Lane, x: f64| l.as_mut_array()[i] = x;
+        let set = |l: &mut L, x: f64| l.as_mut_array()[i] = x;
         set(&mut self.t_s, 0.0);
         self.position_m.set_lane(i, init.position_m);
         self.velocity_m_s.set_lane(i, init.velocity_m_s);
         self.attitude.set_lane(i, init.attitude);
-        // The other lanes get what they hold already: the same formula of the same inputs.
-        self.rotation = self.attitude.to_mat3();
+        self.rotation.set_lane(i, mat3_of(init.attitude));
         self.rate_rad_s.set_lane(i, init.rate_rad_s);
         for leg in &mut self.legs {
             set(&mut leg.stroke_m, 0.0);
@@ -218,6 +231,16 @@ impl Block {
         set(&mut t.steps, 0.0);
         set(&mut t.outcome, -1.0);
         set(&mut self.active, f64::from_bits(u64::MAX));
+    }
+
+    /// Number of lanes holding a sample (read through memory, outside the kernels).
+    #[must_use]
+    pub fn busy_lanes(&self) -> usize {
+        self.active
+            .as_array()
+            .iter()
+            .filter(|m| m.to_bits() != 0)
+            .count()
     }
 
     /// Empties lane `i`: it takes no more steps and decides nothing.

@@ -3,7 +3,7 @@
 
 use crate::block::LegLanes;
 use crate::honeycomb;
-use crate::lane::{Lane, splat};
+use crate::lane::Lane;
 use crate::params::Params;
 use crate::vec3::Vec3;
 
@@ -13,18 +13,18 @@ use crate::vec3::Vec3;
 /// trace; nothing in a sweep reads it.)
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn leg_force(
-    p: &Params,
-    dt: Lane,
-    contact: Lane,
-    penetration: Lane,
-    normal: Vec3,
-    tip: Vec3,
-    tip_velocity: Vec3,
-    strut_up: Vec3,
-    leg: &mut LegLanes,
-) -> (Vec3, Lane, Lane) {
-    let zero = splat(0.0);
+pub fn leg_force<L: Lane>(
+    p: &Params<L>,
+    dt: L,
+    contact: L,
+    penetration: L,
+    normal: Vec3<L>,
+    tip: Vec3<L>,
+    tip_velocity: Vec3<L>,
+    strut_up: Vec3<L>,
+    leg: &mut LegLanes<L>,
+) -> (Vec3<L>, L, L) {
+    let zero = L::splat(0.0);
     let normal_velocity = normal.dot(tip_velocity);
     let mut normal_n = p
         .stiffness_n_per_m
@@ -52,7 +52,7 @@ pub fn leg_force(
     if let Some(h) = &p.honeycomb {
         let cap = p.friction_coefficient * normal_n;
         let friction_now =
-            friction * (cap / friction.length().max(cap).max(splat(f64::MIN_POSITIVE)));
+            friction * (cap / friction.length().max(cap).max(L::splat(f64::MIN_POSITIVE)));
         let load_n = (normal * normal_n + friction_now).dot(strut_up);
         let relief = p.stiffness_n_per_m + p.damping_n_s_per_m / dt;
         let (ds, relieved) = honeycomb::crush(
@@ -75,7 +75,7 @@ pub fn leg_force(
     let magnitude_squared = friction.length_squared();
     let slips = magnitude_squared.simd_gt(cap * cap) & contact;
     if slips.to_bitmask() != 0 {
-        friction = friction * slips.select(cap / magnitude_squared.sqrt(), splat(1.0));
+        friction = friction * slips.select(cap / magnitude_squared.sqrt(), L::splat(1.0));
         // Slip: move the anchor so that the spring alone would give the capped force.
         leg.anchor_m = Vec3::select(
             slips,

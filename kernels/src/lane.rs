@@ -1,85 +1,136 @@
-//! The one place that names the SIMD type: every kernel is written over `Lane`.
+//! What a lane type must do: eight f64 landers side by side, with the arithmetic, masks and
+//! comparisons the kernels use. Every kernel is written once over `L: Lane`; `isa` has the
+//! lane types (AVX-512, AVX2 with FMA, and a portable one) and picks one at run time.
 //!
-//! `f64x8`: eight landers per vector (one AVX-512 register, two AVX2 ones). f64 keeps the
-//! kernels within rounding of the f64 reference model (penetrations are micrometres on
-//! positions of metres, which f32 cannot resolve); see the README's performance section for
-//! the measured choice.
+//! A mask is a lane value with every bit of a lane set (true) or clear (false), as
+//! comparisons return it; `select`, `&`, `|` and `!` work on masks.
+//!
+//! Every lane type computes each lane as IEEE 754 double arithmetic does: `+ - * /` and
+//! `sqrt` correctly rounded, the multiply-adds fused (rounded once) where the CPU has FMA.
+//! So the AVX-512 and AVX2 lane types give the same bits, and a sweep the same file.
 
-/// Eight f64 lanes.
-pub type Lane = wide::f64x8;
-
-/// Number of landers advanced together by one kernel call.
-pub const LANES: usize = 8;
-
-/// Name of the lane type, as the binary reports it.
-pub const LANE_NAME: &str = "f64x8";
-
-/// The instruction set `Lane` was compiled for, as the binary reports it.
-pub const INSTRUCTION_SET: &str = if cfg!(target_feature = "avx512f") {
-    "AVX-512"
-} else if cfg!(target_feature = "avx2") {
-    "AVX2"
-} else {
-    "baseline"
+use std::fmt::Debug;
+use std::ops::{
+    Add, AddAssign, BitAnd, BitAndAssign, BitOr, BitOrAssign, Div, Mul, MulAssign, Neg, Not, Sub,
+    SubAssign,
 };
 
-/// The CPU features this build was compiled to use that the running CPU lacks (empty when
-/// it has them all). Code compiled for a feature the CPU lacks dies of an illegal
-/// instruction; the binary checks this first and explains instead.
-#[must_use]
-pub fn missing_cpu_features() -> Vec<&'static str> {
-    #[allow(unused_mut)]
-    let mut missing = Vec::new();
-    #[cfg(target_arch = "x86_64")]
-    {
-        macro_rules! check {
-            ($($feature:tt),*) => {$(
-                if cfg!(target_feature = $feature) && !std::arch::is_x86_feature_detected!($feature) {
-                    missing.push($feature);
-                }
-            )*};
-        }
-        check!(
-            "avx", "avx2", "fma", "bmi1", "bmi2", "lzcnt", "movbe", "avx512f", "avx512bw",
-            "avx512cd", "avx512dq", "avx512vl"
-        );
-    }
-    missing
-}
+/// Number of landers a lane value holds.
+pub const LANES: usize = 8;
 
-/// A lane vector with every lane set to `x`.
-#[inline(always)]
-#[must_use]
-pub fn splat(x: f64) -> Lane {
-    Lane::splat(x)
+/// Eight f64 landers side by side. Implementations are `#[inline(always)]` throughout: the
+/// kernels are compiled inside one function per instruction set (see `isa`), and anything
+/// not inlined there would lose that instruction set.
+pub trait Lane:
+    Copy
+    + Debug
+    + PartialEq
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + Not<Output = Self>
+    + BitAndAssign
+    + BitOrAssign
+    + Send
+    + Sync
+    + 'static
+{
+    /// Every lane 0.
+    const ZERO: Self;
+    /// Every lane `x`.
+    fn splat(x: f64) -> Self;
+    /// From eight values.
+    fn from_array(a: [f64; LANES]) -> Self;
+    /// The eight values.
+    fn to_array(self) -> [f64; LANES];
+    /// The eight values, in place.
+    fn as_array(&self) -> &[f64; LANES];
+    /// The eight values, in place, to change.
+    fn as_mut_array(&mut self) -> &mut [f64; LANES];
+
+    /// `self * a + b`, fused where the CPU has FMA.
+    #[must_use]
+    fn mul_add(self, a: Self, b: Self) -> Self;
+    /// `self * a - b`.
+    #[must_use]
+    fn mul_sub(self, a: Self, b: Self) -> Self;
+    /// `b - self * a`.
+    #[must_use]
+    fn mul_neg_add(self, a: Self, b: Self) -> Self;
+    /// `-(self * a) - b`.
+    #[must_use]
+    fn mul_neg_sub(self, a: Self, b: Self) -> Self;
+    /// Square root.
+    #[must_use]
+    fn sqrt(self) -> Self;
+    /// Absolute value.
+    #[must_use]
+    fn abs(self) -> Self;
+    /// The smaller of the two; `self` where `o` is NaN.
+    #[must_use]
+    fn min(self, o: Self) -> Self;
+    /// The larger of the two; `self` where `o` is NaN.
+    #[must_use]
+    fn max(self, o: Self) -> Self;
+    /// The smaller of the two; `o` where either is NaN (one instruction).
+    #[must_use]
+    fn fast_min(self, o: Self) -> Self;
+    /// The larger of the two; `o` where either is NaN (one instruction).
+    #[must_use]
+    fn fast_max(self, o: Self) -> Self;
+
+    /// Mask: `self == o` (false where either is NaN).
+    fn simd_eq(self, o: Self) -> Self;
+    /// Mask: `self < o`.
+    fn simd_lt(self, o: Self) -> Self;
+    /// Mask: `self <= o`.
+    fn simd_le(self, o: Self) -> Self;
+    /// Mask: `self > o`.
+    fn simd_gt(self, o: Self) -> Self;
+    /// Mask: `self >= o`.
+    fn simd_ge(self, o: Self) -> Self;
+    /// Mask: NaN lanes.
+    fn is_nan(self) -> Self;
+    /// Per lane of the mask `self`: `a` where true, `b` where false.
+    #[must_use]
+    fn select(self, a: Self, b: Self) -> Self;
+    /// The mask `self` as bits, lane `i` in bit `i`.
+    fn to_bitmask(self) -> u32;
 }
 
 /// All lanes true (all bits set), as masks from comparisons are.
 #[inline(always)]
 #[must_use]
-pub fn all_true() -> Lane {
-    splat(0.0).simd_eq(splat(0.0))
+pub fn all_true<L: Lane>() -> L {
+    L::ZERO.simd_eq(L::ZERO)
 }
 
 /// All lanes false.
 #[inline(always)]
 #[must_use]
-pub fn all_false() -> Lane {
-    splat(0.0)
+pub fn all_false<L: Lane>() -> L {
+    L::ZERO
 }
 
 /// A mask from booleans.
 #[inline]
 #[must_use]
-pub fn mask_from(b: [bool; LANES]) -> Lane {
+pub fn mask_from<L: Lane>(b: [bool; LANES]) -> L {
     let t = f64::from_bits(u64::MAX);
-    Lane::from(b.map(|x| if x { t } else { 0.0 }))
+    L::from_array(b.map(|x| if x { t } else { 0.0 }))
 }
 
 /// The lanes of a mask as booleans.
 #[inline]
 #[must_use]
-pub fn mask_to(m: Lane) -> [bool; LANES] {
+pub fn mask_to<L: Lane>(m: L) -> [bool; LANES] {
     let bits = m.to_bitmask();
     std::array::from_fn(|i| bits & (1 << i) != 0)
 }
@@ -88,13 +139,13 @@ pub fn mask_to(m: Lane) -> [bool; LANES] {
 /// `acc`, as with `max`, but in one instruction (`max` also guards against a NaN `acc`).
 #[inline(always)]
 #[must_use]
-pub fn max_into(acc: Lane, x: Lane) -> Lane {
+pub fn max_into<L: Lane>(acc: L, x: L) -> L {
     x.fast_max(acc)
 }
 
 /// `acc.min(x)` for an accumulator `acc` that is never NaN (see `max_into`).
 #[inline(always)]
 #[must_use]
-pub fn min_into(acc: Lane, x: Lane) -> Lane {
+pub fn min_into<L: Lane>(acc: L, x: L) -> L {
     x.fast_min(acc)
 }

@@ -7,6 +7,7 @@
 pub mod block;
 pub mod contact;
 pub mod honeycomb;
+pub mod isa;
 pub mod lane;
 pub mod outcome;
 pub mod params;

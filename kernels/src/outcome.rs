@@ -2,7 +2,7 @@
 //! and in the same order (see there for the rules).
 
 use crate::block::Block;
-use crate::lane::{Lane, all_false, max_into, min_into, splat};
+use crate::lane::{Lane, all_false, all_true, max_into, min_into};
 use crate::params::Params;
 use crate::vec3::Vec3;
 
@@ -36,8 +36,8 @@ pub const REST_SLIP_M: f64 = 1e-6;
 /// Mask: every one of `xs` is finite. `x * 0` is 0 for a finite `x` and NaN for an infinite
 /// or NaN one, so the sum of the products is 0 exactly when all are finite.
 #[inline(always)]
-fn all_finite<const N: usize>(xs: [Lane; N]) -> Lane {
-    let zero = splat(0.0);
+fn all_finite<L: Lane, const N: usize>(xs: [L; N]) -> L {
+    let zero = L::splat(0.0);
     xs.iter()
         .fold(zero, |sum, x| x.mul_add(zero, sum))
         .simd_eq(zero)
@@ -45,10 +45,10 @@ fn all_finite<const N: usize>(xs: [Lane; N]) -> Lane {
 
 /// Takes in the step just made; returns the mask of lanes decided by it (their code is in
 /// `block.track.outcome`).
-#[inline(never)]
-pub fn observe(p: &Params, block: &mut Block) -> Lane {
-    let zero = splat(0.0);
-    let one = splat(1.0);
+#[inline(always)]
+pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
+    let zero = L::splat(0.0);
+    let one = L::splat(1.0);
     let active = block.active & block.track.outcome.simd_lt(zero);
     let t = &mut block.track;
     t.steps += active.select(one, zero);
@@ -64,20 +64,25 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
 
     let mut contacts = zero;
     let mut resting = zero;
-    let mut deepest = splat(f64::NEG_INFINITY);
-    let rest_gap = splat(-REST_GAP_M);
+    let mut deepest = L::splat(f64::NEG_INFINITY);
+    let rest_gap = L::splat(-REST_GAP_M);
     for (leg, step) in block.legs.iter_mut().zip(&block.leg_step) {
         leg.peak_normal_n = max_into(leg.peak_normal_n, step.normal_n);
         contacts += step.penetration_m.simd_gt(zero).select(one, zero);
         resting += step.penetration_m.simd_gt(rest_gap).select(one, zero);
         deepest = max_into(deepest, step.penetration_m);
     }
-    // Every footpad on the surface still sticks where it stuck when the rest began.
-    let mut stuck = !all_false();
-    let rest_slip_squared = splat(REST_SLIP_M * REST_SLIP_M);
-    for leg in &block.legs {
-        let slid = (leg.anchor_m - leg.rest_anchor_m).length_squared();
-        stuck &= !leg.anchored | slid.simd_le(rest_slip_squared);
+    // From the second step of a rest on: every footpad on the surface still sticks where it
+    // stuck when the rest began. (Only blocks with a lane at rest load the anchors.)
+    let in_rest = t.rest_s.simd_gt(zero);
+    let mut stuck = all_true::<L>();
+    if (in_rest & active).to_bitmask() != 0 {
+        let rest_slip_squared = L::splat(REST_SLIP_M * REST_SLIP_M);
+        for leg in &block.legs {
+            let slid = (leg.anchor_m - leg.rest_anchor_m).length_squared();
+            stuck &= !leg.anchored | slid.simd_le(rest_slip_squared);
+        }
+        stuck |= !in_rest;
     }
     t.max_penetration = max_into(t.max_penetration, deepest);
     let touching = contacts.simd_gt(zero);
@@ -107,16 +112,17 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
             .simd_gt(p.diverged_rate_squared)
         | deepest.simd_gt(p.diverged_penetration_m);
 
-    let mut inside = !all_false();
+    let mut inside = !all_false::<L>();
     let mut tipping = all_false();
     let quasi_static = block
         .force_n
         .length_squared()
         .simd_le(p.quasi_static_force_squared);
-    let two_contacts = contacts.simd_eq(splat(2.0));
+    let two_contacts = contacts.simd_eq(L::splat(2.0));
     if !p.edges.is_empty() {
         let n = block.leg_step.len() as f64;
-        let centroid = block.leg_step.iter().fold(Vec3::ZERO, |c, l| c + l.tip_m) * splat(1.0 / n);
+        let centroid =
+            block.leg_step.iter().fold(Vec3::ZERO, |c, l| c + l.tip_m) * L::splat(1.0 / n);
         // Seen along gravity: `outward` is horizontal, so only x and y enter its products.
         for [i, j] in &p.edges {
             let (a, c) = (&block.leg_step[*i], &block.leg_step[*j]);
@@ -160,20 +166,24 @@ pub fn observe(p: &Params, block: &mut Block) -> Lane {
         & resting.simd_ge(p.rest_contacts)
         & stuck
         & inside;
-    t.rest_s = at_rest.select(t.rest_s + block.dt_s, zero);
-    for leg in &mut block.legs {
-        leg.rest_anchor_m = Vec3::select(at_rest, leg.rest_anchor_m, leg.anchor_m);
+    // A rest that begins with this step remembers where the footpads stick.
+    let starting = at_rest & !in_rest;
+    if (starting & active).to_bitmask() != 0 {
+        for leg in &mut block.legs {
+            leg.rest_anchor_m = Vec3::select(starting, leg.anchor_m, leg.rest_anchor_m);
+        }
     }
+    t.rest_s = at_rest.select(t.rest_s + block.dt_s, zero);
     let stable = t.rest_s.simd_ge(p.hold_time_s);
     let ended = block.t_s.simd_ge(p.t_max_s);
     let at_end = at_rest.select(
-        splat(STABLE),
-        touching.select(splat(SLIDING), splat(BOUNCING)),
+        L::splat(STABLE),
+        touching.select(L::splat(SLIDING), L::splat(BOUNCING)),
     );
 
     let code = diverged.select(
-        splat(DIVERGED),
-        tipped.select(splat(TIPPED), stable.select(splat(STABLE), at_end)),
+        L::splat(DIVERGED),
+        tipped.select(L::splat(TIPPED), stable.select(L::splat(STABLE), at_end)),
     );
     let decided = active & (diverged | tipped | stable | ended);
     t.outcome = decided.select(code, t.outcome);

@@ -1,29 +1,29 @@
 //! Parameters of a sweep, broadcast to lanes once so that the step loads nothing twice.
 
-use crate::lane::{Lane, splat};
+use crate::lane::{LANES, Lane};
 use crate::terrain::Terrain;
 use crate::vec3::Vec3;
 
 /// One leg: footpad at zero stroke and strut axis, in B.
 #[derive(Debug, Clone, Copy)]
-pub struct LegParams {
+pub struct LegParams<L> {
     /// Footpad position in B at zero stroke, m.
-    pub tip_m: Vec3,
+    pub tip_m: Vec3<L>,
     /// Unit strut axis in B, from hip to footpad.
-    pub strut_axis: Vec3,
+    pub strut_axis: Vec3<L>,
 }
 
 /// A crushable honeycomb cartridge: stage ends and forces, and the initial peak.
 #[derive(Debug, Clone)]
-pub struct HoneycombParams {
+pub struct HoneycombParams<L> {
     /// (stroke at the end of the stage, crush force within it), first stage first.
-    pub stages: Vec<(Lane, Lane)>,
+    pub stages: Vec<(L, L)>,
     /// Crush force over the initial peak, N.
-    pub peak_force_n: Lane,
+    pub peak_force_n: L,
     /// Stroke over which the initial peak acts, m.
-    pub peak_stroke_m: Lane,
+    pub peak_stroke_m: L,
     /// The usable stroke, m.
-    pub usable_stroke_m: Lane,
+    pub usable_stroke_m: L,
 }
 
 /// Everything the kernels hold fixed over a sweep.
@@ -33,53 +33,55 @@ pub struct HoneycombParams {
 /// and squared thresholds (compared with squared lengths, without a square root).
 #[derive(Debug, Clone)]
 #[allow(missing_docs)]
-pub struct Params {
-    pub gravity_m_s2: Lane,
+pub struct Params<L> {
+    pub gravity_m_s2: L,
     /// `1 / mass`.
-    pub inverse_mass_per_kg: Lane,
-    pub inertia_kg_m2: Vec3,
+    pub inverse_mass_per_kg: L,
+    pub inertia_kg_m2: Vec3<L>,
     /// `1 / inertia_kg_m2`, per axis.
-    pub inverse_inertia: Vec3,
-    pub legs: Vec<LegParams>,
+    pub inverse_inertia: Vec3<L>,
+    pub legs: Vec<LegParams<L>>,
     /// Edges of the support polygon (indices into `legs`).
     pub edges: Vec<[usize; 2]>,
-    pub stiffness_n_per_m: Lane,
-    pub damping_n_s_per_m: Lane,
-    pub friction_coefficient: Lane,
-    pub friction_stiffness_n_per_m: Lane,
+    pub stiffness_n_per_m: L,
+    pub damping_n_s_per_m: L,
+    pub friction_coefficient: L,
+    pub friction_stiffness_n_per_m: L,
     /// `1 / friction_stiffness_n_per_m`.
-    pub friction_compliance_m_per_n: Lane,
-    pub friction_damping_n_s_per_m: Lane,
-    pub honeycomb: Option<HoneycombParams>,
+    pub friction_compliance_m_per_n: L,
+    pub friction_damping_n_s_per_m: L,
+    pub honeycomb: Option<HoneycombParams<L>>,
     pub terrain: Option<Terrain>,
-    pub step_s: Lane,
-    pub flight_step_max_s: Lane,
+    pub step_s: L,
+    pub flight_step_max_s: L,
     /// Whether free flight may take steps longer than `step_s`.
     pub long_flight_steps: bool,
-    pub t_max_s: Lane,
-    pub leg_reach_m: Lane,
+    pub t_max_s: L,
+    pub leg_reach_m: L,
     /// `rest_speed_m_s^2`.
-    pub rest_speed_squared: Lane,
+    pub rest_speed_squared: L,
     /// `rest_rate_rad_s^2`.
-    pub rest_rate_squared: Lane,
-    pub hold_time_s: Lane,
-    pub bounce_clearance_m: Lane,
+    pub rest_rate_squared: L,
+    pub hold_time_s: L,
+    pub bounce_clearance_m: L,
     /// `diverged_speed_m_s^2`.
-    pub diverged_speed_squared: Lane,
+    pub diverged_speed_squared: L,
     /// `diverged_rate_rad_s^2`.
-    pub diverged_rate_squared: Lane,
-    pub diverged_penetration_m: Lane,
+    pub diverged_rate_squared: L,
+    pub diverged_penetration_m: L,
     /// Whether `tipped` is decided at the point of no return, not only past 90 deg.
     pub early_tipping: bool,
     /// `(2 m g)^2`: a contact force within twice the weight means no impact is under way.
-    pub quasi_static_force_squared: Lane,
+    pub quasi_static_force_squared: L,
     /// Legs that must touch for rest: three, or all when fewer.
-    pub rest_contacts: Lane,
+    pub rest_contacts: L,
 }
 
-/// Broadcasts a scalar.
+/// Broadcasts a scalar, outside the kernels: through memory, with no SIMD instruction
+/// (code outside the kernels is compiled for the baseline CPU, and an instruction of the
+/// kernel's set there would be an out-of-line call that leaves the vector unit dirty).
 #[inline]
 #[must_use]
-pub fn lane(x: f64) -> Lane {
-    splat(x)
+pub fn lane<L: Lane>(x: f64) -> L {
+    L::from_array([x; LANES])
 }

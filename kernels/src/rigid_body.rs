@@ -1,6 +1,6 @@
 //! The 6-DOF rigid body over lanes: the reference's `rigid_body`, line for line.
 
-use crate::lane::{Lane, splat};
+use crate::lane::Lane;
 use crate::vec3::{Quat, Vec3};
 
 /// Advances position, velocity, rates and attitude of every lane by its own `dt` (0 leaves
@@ -8,22 +8,22 @@ use crate::vec3::{Quat, Vec3};
 /// by their reciprocals, computed once per sweep.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn integrate(
-    position_m: &mut Vec3,
-    velocity_m_s: &mut Vec3,
-    attitude: &mut Quat,
-    rate_rad_s: &mut Vec3,
-    inverse_mass_per_kg: Lane,
-    inertia_kg_m2: Vec3,
-    inverse_inertia: Vec3,
-    gravity_m_s2: Lane,
-    force_n: Vec3,
-    moment_n_m: Vec3,
-    dt: Lane,
+pub fn integrate<L: Lane>(
+    position_m: &mut Vec3<L>,
+    velocity_m_s: &mut Vec3<L>,
+    attitude: &mut Quat<L>,
+    rate_rad_s: &mut Vec3<L>,
+    inverse_mass_per_kg: L,
+    inertia_kg_m2: Vec3<L>,
+    inverse_inertia: Vec3<L>,
+    gravity_m_s2: L,
+    force_n: Vec3<L>,
+    moment_n_m: Vec3<L>,
+    dt: L,
 ) {
     let acceleration = force_n * inverse_mass_per_kg;
     let kicked = acceleration.mul_add(dt, *velocity_m_s);
-    let fall = gravity_m_s2 * (splat(0.5) * dt * dt);
+    let fall = gravity_m_s2 * (L::splat(0.5) * dt * dt);
     *position_m = kicked.mul_add(dt, *position_m);
     position_m.z -= fall;
     *velocity_m_s = kicked;
@@ -32,7 +32,7 @@ pub fn integrate(
     // Euler's equations by the implicit midpoint rule, as the reference.
     let i = inertia_kg_m2;
     let w0 = *rate_rad_s;
-    let half_dt = splat(0.5) * dt;
+    let half_dt = L::splat(0.5) * dt;
     // (dt / 2) / I per axis, once: a pass is then one multiply-add per axis.
     let inv = inverse_inertia;
     let half_dt_per_i = Vec3::new(inv.x * half_dt, inv.y * half_dt, inv.z * half_dt);
@@ -47,7 +47,7 @@ pub fn integrate(
             torque.z.mul_add(h.z, w0.z),
         );
     }
-    *rate_rad_s = mid.mul_add(splat(2.0), -w0);
+    *rate_rad_s = mid.mul_add(L::splat(2.0), -w0);
 
     *attitude = (*attitude * rotation_increment(mid, dt)).normalize();
 }
@@ -58,16 +58,19 @@ pub const MIDPOINT_PASSES: usize = 3;
 /// `exp(w dt / 2)` as a quaternion, by the same Taylor series as the reference.
 #[inline(always)]
 #[must_use]
-pub fn rotation_increment(w: Vec3, dt: Lane) -> Quat {
-    let half = splat(0.5) * dt;
+pub fn rotation_increment<L: Lane>(w: Vec3<L>, dt: L) -> Quat<L> {
+    let half = L::splat(0.5) * dt;
     let theta2 = w.length_squared() * half * half;
     let t4 = theta2 * theta2;
     let t6 = t4 * theta2;
     // 1 - theta2 / 2 + t4 / 24 - t6 / 720, term after term, each fused with the sum before.
     let series = |c2: f64, c4: f64, c6: f64| {
         t6.mul_neg_add(
-            splat(c6),
-            t4.mul_add(splat(c4), theta2.mul_neg_add(splat(c2), splat(1.0))),
+            L::splat(c6),
+            t4.mul_add(
+                L::splat(c4),
+                theta2.mul_neg_add(L::splat(c2), L::splat(1.0)),
+            ),
         )
     };
     let cos = series(1.0 / 2.0, 1.0 / 24.0, 1.0 / 720.0);

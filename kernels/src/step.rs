@@ -3,7 +3,7 @@
 
 use crate::block::{Block, LegStep, SurfaceLanes};
 use crate::contact;
-use crate::lane::{Lane, all_false, min_into, splat};
+use crate::lane::{Lane, all_false, min_into};
 use crate::params::{LegParams, Params};
 use crate::rigid_body;
 use crate::terrain::height_lanes;
@@ -11,7 +11,7 @@ use crate::vec3::Vec3;
 
 /// Penetration below the local surface along the local normal, and that normal.
 #[inline(always)]
-fn penetration(p: &Params, s: &SurfaceLanes, tip: Vec3) -> (Lane, Vec3) {
+fn penetration<L: Lane>(p: &Params<L>, s: &SurfaceLanes<L>, tip: Vec3<L>) -> (L, Vec3<L>) {
     match &p.terrain {
         // The plane itself: no height, and its normal is already a unit vector.
         None => (-s.normal.dot(tip), s.normal),
@@ -23,7 +23,7 @@ fn penetration(p: &Params, s: &SurfaceLanes, tip: Vec3) -> (Lane, Vec3) {
                 s.tangent_v.dot(tip) + s.offset_v_m,
             );
             let m = s.normal - s.tangent_u * dh_du - s.tangent_v * dh_dv;
-            let inv = splat(1.0) / m.length();
+            let inv = L::splat(1.0) / m.length();
             ((h - s.normal.dot(tip)) * inv, m * inv)
         }
     }
@@ -32,7 +32,7 @@ fn penetration(p: &Params, s: &SurfaceLanes, tip: Vec3) -> (Lane, Vec3) {
 /// Footpad position in B: `tip_m - s strut_axis` at stroke `s`. Without dampers the stroke
 /// stays 0 and the footpad where the parameters put it.
 #[inline(always)]
-fn tip_in_body(p: &Params, leg: &LegParams, stroke_m: Lane) -> Vec3 {
+fn tip_in_body<L: Lane>(p: &Params<L>, leg: &LegParams<L>, stroke_m: L) -> Vec3<L> {
     if p.honeycomb.is_some() {
         leg.tip_m - leg.strut_axis * stroke_m
     } else {
@@ -41,9 +41,9 @@ fn tip_in_body(p: &Params, leg: &LegParams, stroke_m: Lane) -> Vec3 {
 }
 
 /// Advances every lane of `block` by its `dt` (0 for lanes that must not move).
-#[inline(never)]
-pub fn step(p: &Params, block: &mut Block, dt: Lane) {
-    let zero = splat(0.0);
+#[inline(always)]
+pub fn step<L: Lane>(p: &Params<L>, block: &mut Block<L>, dt: L) {
+    let zero = L::splat(0.0);
     let rotation = block.rotation;
     let rate_i = rotation.mul_vec3(block.rate_rad_s);
     let mut force_n = Vec3::ZERO;
@@ -120,33 +120,43 @@ pub fn step(p: &Params, block: &mut Block, dt: Lane) {
 
 /// The step every lane takes (see the reference's `step_size`): `step_s` near the surface,
 /// longer in free flight where no footpad can reach the terrain within it; 0 for empty lanes.
-#[inline(never)]
+#[inline(always)]
 #[must_use]
-pub fn step_size(p: &Params, block: &Block) -> Lane {
+pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
     let remaining = p.t_max_s - block.t_s;
     let mut dt = p.step_s;
     if p.long_flight_steps {
-        let top = splat(p.terrain.as_ref().map_or(0.0, |t| t.height_max_m()));
+        let top = L::splat(p.terrain.as_ref().map_or(0.0, |t| t.height_max_m()));
         let normal = block.surface.normal;
         let normal_b = block.rotation.transpose_mul_vec3(normal);
         let height = normal.dot(block.position_m) - top;
-        let mut clearance = splat(f64::INFINITY);
+        let mut clearance = L::splat(f64::INFINITY);
         for (leg, state) in p.legs.iter().zip(&block.legs) {
             let tip_b = tip_in_body(p, leg, state.stroke_m);
             clearance = min_into(clearance, height + normal_b.dot(tip_b));
         }
         // As the reference's `if clearance > 0`: only lanes in free flight need the rest.
-        let flying = clearance.simd_gt(splat(0.0));
+        let flying = clearance.simd_gt(L::splat(0.0));
         if (flying & block.active).to_bitmask() != 0 {
             let speed = block.velocity_m_s.length() + block.rate_rad_s.length() * p.leg_reach_m;
-            let reach = splat(2.0) * clearance
-                / (speed + (speed * speed + splat(2.0) * p.gravity_m_s2 * clearance).sqrt());
+            let reach = L::splat(2.0) * clearance
+                / (speed + (speed * speed + L::splat(2.0) * p.gravity_m_s2 * clearance).sqrt());
             // (The bounds are never NaN: `fast_` versions give the same.)
-            let free = (splat(0.5) * reach)
+            let free = (L::splat(0.5) * reach)
                 .fast_max(p.step_s)
                 .fast_min(p.flight_step_max_s);
             dt = flying.select(free, dt);
         }
     }
-    block.active.select(dt.min(remaining), splat(0.0))
+    block.active.select(dt.min(remaining), L::splat(0.0))
+}
+
+/// One step of every lane holding a sample: its step size, the step, the outcome
+/// tracking. Returns the lanes decided by it as bits (lane `i` in bit `i`). Each lane type
+/// compiles this inside a function that enables its instruction set (`isa`).
+#[inline(always)]
+pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> u32 {
+    let dt = step_size(p, block);
+    step(p, block, dt);
+    crate::outcome::observe(p, block).to_bitmask()
 }

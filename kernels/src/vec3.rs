@@ -1,60 +1,61 @@
 //! Structure-of-arrays 3-vectors and quaternions over lanes, with the few operations the
 //! physics needs (no trigonometry).
 
-use crate::lane::{Lane, splat};
+use crate::lane::Lane;
+use crate::params::lane;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
 /// A 3-vector per lane.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Vec3 {
+pub struct Vec3<L> {
     /// x of every lane.
-    pub x: Lane,
+    pub x: L,
     /// y of every lane.
-    pub y: Lane,
+    pub y: L,
     /// z of every lane.
-    pub z: Lane,
+    pub z: L,
 }
 
-impl Vec3 {
+impl<L: Lane> Vec3<L> {
     /// The zero vector in every lane.
-    pub const ZERO: Vec3 = Vec3 {
-        x: Lane::ZERO,
-        y: Lane::ZERO,
-        z: Lane::ZERO,
+    pub const ZERO: Vec3<L> = Vec3 {
+        x: L::ZERO,
+        y: L::ZERO,
+        z: L::ZERO,
     };
 
     /// From components.
     #[inline(always)]
     #[must_use]
-    pub fn new(x: Lane, y: Lane, z: Lane) -> Vec3 {
+    pub fn new(x: L, y: L, z: L) -> Vec3<L> {
         Vec3 { x, y, z }
     }
 
     /// The same vector in every lane.
     #[inline(always)]
     #[must_use]
-    pub fn splat(v: [f64; 3]) -> Vec3 {
-        Vec3::new(splat(v[0]), splat(v[1]), splat(v[2]))
+    pub fn splat(v: [f64; 3]) -> Vec3<L> {
+        Vec3::new(lane(v[0]), lane(v[1]), lane(v[2]))
     }
 
     /// Dot product per lane.
     #[inline(always)]
     #[must_use]
-    pub fn dot(self, o: Vec3) -> Lane {
+    pub fn dot(self, o: Vec3<L>) -> L {
         self.x.mul_add(o.x, self.y.mul_add(o.y, self.z * o.z))
     }
 
     /// Dot product of the projections on the XY plane, per lane.
     #[inline(always)]
     #[must_use]
-    pub fn dot_xy(self, o: Vec3) -> Lane {
+    pub fn dot_xy(self, o: Vec3<L>) -> L {
         self.x.mul_add(o.x, self.y * o.y)
     }
 
     /// Cross product per lane.
     #[inline(always)]
     #[must_use]
-    pub fn cross(self, o: Vec3) -> Vec3 {
+    pub fn cross(self, o: Vec3<L>) -> Vec3<L> {
         Vec3::new(
             self.y.mul_sub(o.z, self.z * o.y),
             self.z.mul_sub(o.x, self.x * o.z),
@@ -65,7 +66,7 @@ impl Vec3 {
     /// `self * s + c` per lane, each component one fused multiply-add.
     #[inline(always)]
     #[must_use]
-    pub fn mul_add(self, s: Lane, c: Vec3) -> Vec3 {
+    pub fn mul_add(self, s: L, c: Vec3<L>) -> Vec3<L> {
         Vec3::new(
             self.x.mul_add(s, c.x),
             self.y.mul_add(s, c.y),
@@ -76,7 +77,7 @@ impl Vec3 {
     /// `c - self * s` per lane, each component one fused multiply-add.
     #[inline(always)]
     #[must_use]
-    pub fn mul_neg_add(self, s: Lane, c: Vec3) -> Vec3 {
+    pub fn mul_neg_add(self, s: L, c: Vec3<L>) -> Vec3<L> {
         Vec3::new(
             self.x.mul_neg_add(s, c.x),
             self.y.mul_neg_add(s, c.y),
@@ -87,21 +88,21 @@ impl Vec3 {
     /// Squared length per lane.
     #[inline(always)]
     #[must_use]
-    pub fn length_squared(self) -> Lane {
+    pub fn length_squared(self) -> L {
         self.dot(self)
     }
 
     /// Length per lane.
     #[inline(always)]
     #[must_use]
-    pub fn length(self) -> Lane {
+    pub fn length(self) -> L {
         self.dot(self).sqrt()
     }
 
     /// `mask ? a : b` per lane.
     #[inline(always)]
     #[must_use]
-    pub fn select(mask: Lane, a: Vec3, b: Vec3) -> Vec3 {
+    pub fn select(mask: L, a: Vec3<L>, b: Vec3<L>) -> Vec3<L> {
         Vec3::new(
             mask.select(a.x, b.x),
             mask.select(a.y, b.y),
@@ -129,61 +130,61 @@ impl Vec3 {
     }
 }
 
-impl Add for Vec3 {
-    type Output = Vec3;
+impl<L: Lane> Add for Vec3<L> {
+    type Output = Vec3<L>;
     #[inline(always)]
-    fn add(self, o: Vec3) -> Vec3 {
+    fn add(self, o: Vec3<L>) -> Vec3<L> {
         Vec3::new(self.x + o.x, self.y + o.y, self.z + o.z)
     }
 }
 
-impl AddAssign for Vec3 {
+impl<L: Lane> AddAssign for Vec3<L> {
     #[inline(always)]
-    fn add_assign(&mut self, o: Vec3) {
+    fn add_assign(&mut self, o: Vec3<L>) {
         *self = *self + o;
     }
 }
 
-impl Sub for Vec3 {
-    type Output = Vec3;
+impl<L: Lane> Sub for Vec3<L> {
+    type Output = Vec3<L>;
     #[inline(always)]
-    fn sub(self, o: Vec3) -> Vec3 {
+    fn sub(self, o: Vec3<L>) -> Vec3<L> {
         Vec3::new(self.x - o.x, self.y - o.y, self.z - o.z)
     }
 }
 
-impl Neg for Vec3 {
-    type Output = Vec3;
+impl<L: Lane> Neg for Vec3<L> {
+    type Output = Vec3<L>;
     #[inline(always)]
-    fn neg(self) -> Vec3 {
+    fn neg(self) -> Vec3<L> {
         Vec3::new(-self.x, -self.y, -self.z)
     }
 }
 
-impl Mul<Lane> for Vec3 {
-    type Output = Vec3;
+impl<L: Lane> Mul<L> for Vec3<L> {
+    type Output = Vec3<L>;
     #[inline(always)]
-    fn mul(self, s: Lane) -> Vec3 {
+    fn mul(self, s: L) -> Vec3<L> {
         Vec3::new(self.x * s, self.y * s, self.z * s)
     }
 }
 
 /// A rotation matrix per lane, by columns (the images of the body axes).
 #[derive(Debug, Clone, Copy)]
-pub struct Mat3 {
+pub struct Mat3<L> {
     /// Image of X_B.
-    pub x_axis: Vec3,
+    pub x_axis: Vec3<L>,
     /// Image of Y_B.
-    pub y_axis: Vec3,
+    pub y_axis: Vec3<L>,
     /// Image of Z_B.
-    pub z_axis: Vec3,
+    pub z_axis: Vec3<L>,
 }
 
-impl Mat3 {
+impl<L: Lane> Mat3<L> {
     /// `M v`.
     #[inline(always)]
     #[must_use]
-    pub fn mul_vec3(&self, v: Vec3) -> Vec3 {
+    pub fn mul_vec3(&self, v: Vec3<L>) -> Vec3<L> {
         let (a, b, c) = (self.x_axis, self.y_axis, self.z_axis);
         Vec3::new(
             c.x.mul_add(v.z, b.x.mul_add(v.y, a.x * v.x)),
@@ -192,38 +193,62 @@ impl Mat3 {
         )
     }
 
+    /// Sets one lane from columns.
+    #[inline]
+    pub fn set_lane(&mut self, i: usize, columns: [[f64; 3]; 3]) {
+        self.x_axis.set_lane(i, columns[0]);
+        self.y_axis.set_lane(i, columns[1]);
+        self.z_axis.set_lane(i, columns[2]);
+    }
+
     /// `M^T v`.
     #[inline(always)]
     #[must_use]
-    pub fn transpose_mul_vec3(&self, v: Vec3) -> Vec3 {
+    pub fn transpose_mul_vec3(&self, v: Vec3<L>) -> Vec3<L> {
         Vec3::new(self.x_axis.dot(v), self.y_axis.dot(v), self.z_axis.dot(v))
     }
 }
 
-/// A unit quaternion per lane (`w` scalar part).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Quat {
-    /// x of every lane.
-    pub x: Lane,
-    /// y of every lane.
-    pub y: Lane,
-    /// z of every lane.
-    pub z: Lane,
-    /// Scalar part of every lane.
-    pub w: Lane,
+/// The rotation matrix of one quaternion `[x, y, z, w]`, by columns: `Quat::to_mat3` of one
+/// lane, operation for operation (the same bits), for code outside the kernels.
+#[must_use]
+pub fn mat3_of(q: [f64; 4]) -> [[f64; 3]; 3] {
+    let [x, y, z, w] = q;
+    let (x2, y2, z2) = (x * 2.0, y * 2.0, z * 2.0);
+    let (xx, xy, xz) = (x * x2, x * y2, x * z2);
+    let (yy, yz, zz) = (y * y2, y * z2, z * z2);
+    let (wx, wy, wz) = (w * x2, w * y2, w * z2);
+    [
+        [1.0 - (yy + zz), xy + wz, xz - wy],
+        [xy - wz, 1.0 - (xx + zz), yz + wx],
+        [xz + wy, yz - wx, 1.0 - (xx + yy)],
+    ]
 }
 
-impl Quat {
+/// A unit quaternion per lane (`w` scalar part).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Quat<L> {
+    /// x of every lane.
+    pub x: L,
+    /// y of every lane.
+    pub y: L,
+    /// z of every lane.
+    pub z: L,
+    /// Scalar part of every lane.
+    pub w: L,
+}
+
+impl<L: Lane> Quat<L> {
     /// Renormalised to unit length.
     #[inline(always)]
     #[must_use]
-    pub fn normalize(self) -> Quat {
+    pub fn normalize(self) -> Quat<L> {
         let length_squared = self.w.mul_add(
             self.w,
             self.z
                 .mul_add(self.z, self.y.mul_add(self.y, self.x * self.x)),
         );
-        let inv = splat(1.0) / length_squared.sqrt();
+        let inv = L::splat(1.0) / length_squared.sqrt();
         Quat {
             x: self.x * inv,
             y: self.y * inv,
@@ -235,9 +260,9 @@ impl Quat {
     /// The rotation matrix (as glam's `DMat3::from_quat`).
     #[inline(always)]
     #[must_use]
-    pub fn to_mat3(self) -> Mat3 {
-        let two = splat(2.0);
-        let one = splat(1.0);
+    pub fn to_mat3(self) -> Mat3<L> {
+        let two = L::splat(2.0);
+        let one = L::splat(1.0);
         let (x2, y2, z2) = (self.x * two, self.y * two, self.z * two);
         let (xx, xy, xz) = (self.x * x2, self.x * y2, self.x * z2);
         let (yy, yz, zz) = (self.y * y2, self.y * z2, self.z * z2);
@@ -271,11 +296,11 @@ impl Quat {
     }
 }
 
-impl Mul for Quat {
-    type Output = Quat;
+impl<L: Lane> Mul for Quat<L> {
+    type Output = Quat<L>;
     /// Hamilton product `self * o`.
     #[inline(always)]
-    fn mul(self, o: Quat) -> Quat {
+    fn mul(self, o: Quat<L>) -> Quat<L> {
         // Term after term as written, each product fused with the sum before it.
         let (a, b) = (self, o);
         Quat {

@@ -17,7 +17,10 @@ use std::path::{Path, PathBuf};
 const SHARED_KEYS: [(&str, &str); 6] = [
     ("touchdown.kind", "kind of file"),
     ("touchdown.engine", "engine version"),
-    ("touchdown.lane_type", "kernel lane type"),
+    (
+        "touchdown.lane_type",
+        "kernel arithmetic (f64x8-fma or f64x8-nofma)",
+    ),
     ("touchdown.seed", "seed"),
     ("touchdown.samples", "sample count"),
     ("touchdown.scenario", "scenario"),

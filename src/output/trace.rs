@@ -188,16 +188,16 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
         if failure.is_some() {
             return;
         }
-        if index % every == 0 {
+        if index.is_multiple_of(every) {
             row(model, report, &mut buf);
             for (c, v) in data.iter_mut().zip(&buf) {
                 c.push(*v);
             }
             rows += 1;
-            if data[0].len() >= BATCH_ROWS {
-                if let Err(e) = flush(&mut data, &mut writer) {
-                    failure = Some(e);
-                }
+            if data[0].len() >= BATCH_ROWS
+                && let Err(e) = flush(&mut data, &mut writer)
+            {
+                failure = Some(e);
             }
         }
         index += 1;

@@ -99,7 +99,7 @@ impl Model {
             .zip(&axes)
             .map(|(t, u)| {
                 (
-                    t.y.atan2(t.x),
+                    libm::atan2(t.y, t.x),
                     Leg {
                         tip_m: *t,
                         strut_axis: *u,
@@ -202,8 +202,8 @@ impl Surface {
     /// The surface of a sample.
     #[must_use]
     pub fn of(sample: &Sample) -> Surface {
-        let (sa, ca) = sample.inputs.slope_deg.to_radians().sin_cos();
-        let (sb, cb) = sample.inputs.downhill_azimuth_deg.to_radians().sin_cos();
+        let (sa, ca) = libm::sincos(sample.inputs.slope_deg.to_radians());
+        let (sb, cb) = libm::sincos(sample.inputs.downhill_azimuth_deg.to_radians());
         let normal = DVec3::new(sa * cb, sa * sb, ca);
         let tangent_u = DVec3::new(ca * cb, ca * sb, -sa);
         Surface {

@@ -14,7 +14,7 @@
 //!   thresholds, at least three legs (all, with fewer) in contact or within `REST_GAP_M`
 //!   (1 micrometre) of it, the CG inside every edge of the support polygon, and every
 //!   footpad in contact sticking: its friction anchor within `REST_SLIP_M` (1 micrometre)
-//!   of where it was when the rest began;
+//!   of where it was after the first step of the rest;
 //! - at `t_max`: `stable` if at rest, else `sliding` if a leg touches the surface, else
 //!   `bouncing`.
 
@@ -160,9 +160,11 @@ impl Tracker {
             resting += usize::from(leg.penetration_m > -REST_GAP_M);
             deepest = deepest.max(leg.penetration_m);
         }
-        // Every footpad on the surface still sticks where it stuck when the rest began.
-        let stuck =
-            after.legs.iter().zip(&self.rest_anchor_m).all(|(l, a)| {
+        // From the second step of a rest on: every footpad on the surface still sticks where
+        // it stuck when the rest began.
+        let in_rest = self.rest_s > 0.0;
+        let stuck = !in_rest
+            || after.legs.iter().zip(&self.rest_anchor_m).all(|(l, a)| {
                 !l.anchored || (l.anchor_m - *a).length_squared() <= REST_SLIP_M.powi(2)
             });
         self.max_penetration = self.max_penetration.max(deepest);
@@ -225,14 +227,17 @@ impl Tracker {
             && resting >= model.legs.len().min(3)
             && stuck
             && inside;
-        if at_rest {
-            self.rest_s += report.dt_s;
-        } else {
-            self.rest_s = 0.0;
+        if at_rest && !in_rest {
+            // A rest begins with this step: remember where the footpads stick.
             for (a, l) in self.rest_anchor_m.iter_mut().zip(&after.legs) {
                 *a = l.anchor_m;
             }
         }
+        self.rest_s = if at_rest {
+            self.rest_s + report.dt_s
+        } else {
+            0.0
+        };
         if self.rest_s >= th.hold_time_s {
             return Some(Outcome::Stable);
         }
@@ -259,8 +264,8 @@ impl Tracker {
             outcome,
             decided_s: last.t_s,
             steps: self.steps,
-            final_tilt_deg: finite_or_zero(cos_tilt.clamp(-1.0, 1.0).acos().to_degrees()),
-            max_tilt_deg: self.min_cos_tilt.clamp(-1.0, 1.0).acos().to_degrees(),
+            final_tilt_deg: finite_or_zero(libm::acos(cos_tilt.clamp(-1.0, 1.0)).to_degrees()),
+            max_tilt_deg: libm::acos(self.min_cos_tilt.clamp(-1.0, 1.0)).to_degrees(),
             displacement_m: finite_or_zero(along.length()),
             peak_acceleration_m_s2: finite_or_zero(self.peak_acceleration),
             peak_acceleration_z_body_m_s2: finite_or_zero(self.peak_acceleration_z),

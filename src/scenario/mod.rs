@@ -219,8 +219,8 @@ impl Lander {
                     let az = first_leg_azimuth_deg.to_radians()
                         + std::f64::consts::TAU * i as f64 / *legs as f64;
                     [
-                        footpad_radius_m * az.cos(),
-                        footpad_radius_m * az.sin(),
+                        footpad_radius_m * libm::cos(az),
+                        footpad_radius_m * libm::sin(az),
                         -cg_height_m,
                     ]
                 })
@@ -498,17 +498,17 @@ impl Scenario {
     }
 
     fn check_leg_counts(&self) -> Result<(), ScenarioError> {
-        if let StrutAxes::PerLeg(axes) = &self.damper.strut_axes {
-            if axes.len() != self.leg_count() {
-                return Err(ScenarioError::Invalid {
-                    key: "damper.strut_axis".into(),
-                    value: format!("{} axes", axes.len()),
-                    allowed: format!(
-                        "one axis for all legs or one per leg ({} legs)",
-                        self.leg_count()
-                    ),
-                });
-            }
+        if let StrutAxes::PerLeg(axes) = &self.damper.strut_axes
+            && axes.len() != self.leg_count()
+        {
+            return Err(ScenarioError::Invalid {
+                key: "damper.strut_axis".into(),
+                value: format!("{} axes", axes.len()),
+                allowed: format!(
+                    "one axis for all legs or one per leg ({} legs)",
+                    self.leg_count()
+                ),
+            });
         }
         Ok(())
     }

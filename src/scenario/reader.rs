@@ -145,10 +145,10 @@ impl Reader {
         match self.take(key) {
             None => Ok(default),
             Some(v) => {
-                if let Value::String(s) = &v {
-                    if let Some(w) = words.iter().find(|w| *w == s) {
-                        return Ok(w);
-                    }
+                if let Value::String(s) = &v
+                    && let Some(w) = words.iter().find(|w| *w == s)
+                {
+                    return Ok(w);
                 }
                 let list: Vec<String> = words.iter().map(|w| format!("\"{w}\"")).collect();
                 Err(self.error(key, &v, &format!("one of {}", list.join(", "))))
