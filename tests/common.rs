@@ -216,46 +216,141 @@ pub(crate) fn check_bad_input(command: &str, case: &BadInput, never: &[&str]) ->
 /// What the Python tests import: the readers, and matplotlib for examples/python.
 const PYTHON_MODULES: &str = "pandas, polars, pyarrow, matplotlib";
 
-/// The Python interpreter: `TOUCHDOWN_PYTHON`, or `python3`.
+/// The interpreter the Python tests run: `TOUCHDOWN_PYTHON` if set (it must have the
+/// packages), else the one of a virtual environment under `target/` that the tests make on
+/// first use from `tests/python/requirements.txt` (`python3 -m venv`, then pip) and reuse
+/// after. Nothing is installed into the system's Python.
 pub(crate) fn python() -> String {
-    std::env::var("TOUCHDOWN_PYTHON").unwrap_or_else(|_| "python3".to_string())
-}
-
-/// Why the Python readers cannot run, or `None` when they can.
-fn python_unavailable() -> Option<String> {
-    match Command::new(python())
-        .args(["-c", &format!("import {PYTHON_MODULES}")])
-        .output()
-    {
-        Err(e) => Some(format!("cannot run {}: {e}", python())),
-        Ok(o) if !o.status.success() => Some(format!(
-            "{} cannot import {PYTHON_MODULES}: {}",
-            python(),
-            String::from_utf8_lossy(&o.stderr).trim()
-        )),
-        Ok(_) => None,
+    match python_environment() {
+        Ok(p) => p.clone(),
+        Err(_) => "python3".to_string(),
     }
 }
 
-/// Whether the Python readers can run for `test`. When they cannot, the test is skipped
-/// (`false`, with a note on the terminal) if `TOUCHDOWN_SKIP_PYTHON=1`, and fails otherwise.
-pub(crate) fn python_readers_available(test: &str) -> bool {
-    let Some(why) = python_unavailable() else {
-        return true;
+/// The interpreter with the packages, or why there is none (once per test run).
+fn python_environment() -> &'static Result<String, String> {
+    static PYTHON: std::sync::OnceLock<Result<String, String>> = std::sync::OnceLock::new();
+    PYTHON.get_or_init(|| {
+        if let Ok(p) = std::env::var("TOUCHDOWN_PYTHON") {
+            return check_imports(&p).map(|()| p);
+        }
+        provision_venv()
+    })
+}
+
+/// Whether `python` imports the packages.
+fn check_imports(python: &str) -> Result<(), String> {
+    match Command::new(python)
+        .args(["-c", &format!("import {PYTHON_MODULES}")])
+        .output()
+    {
+        Err(e) => Err(format!("cannot run {python}: {e}")),
+        Ok(o) if !o.status.success() => Err(format!(
+            "{python} cannot import {PYTHON_MODULES}: {}",
+            String::from_utf8_lossy(&o.stderr).trim()
+        )),
+        Ok(_) => Ok(()),
+    }
+}
+
+/// Makes (or reuses) `target/tmp/python-venv` with the packages of
+/// `tests/python/requirements.txt`; returns its interpreter.
+fn provision_venv() -> Result<String, String> {
+    let requirements = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/requirements.txt");
+    let wanted = std::fs::read_to_string(&requirements)
+        .map_err(|e| format!("cannot read {}: {e}", requirements.display()))?;
+    let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("python-venv");
+    let python = venv.join("bin/python");
+    let stamp = venv.join("requirements.installed");
+    if std::fs::read_to_string(&stamp).ok().as_deref() == Some(wanted.as_str())
+        && check_imports(&python.to_string_lossy()).is_ok()
+    {
+        return Ok(python.to_string_lossy().into_owned());
+    }
+    let run = |program: &Path, args: &[&std::ffi::OsStr], what: &str| -> Result<(), String> {
+        let o = Command::new(program)
+            .args(args)
+            .output()
+            .map_err(|e| format!("{what}: cannot run {}: {e}", program.display()))?;
+        if o.status.success() {
+            return Ok(());
+        }
+        let tail: Vec<&str> = std::str::from_utf8(&o.stderr)
+            .unwrap_or("")
+            .lines()
+            .rev()
+            .take(6)
+            .collect();
+        Err(format!(
+            "{what} failed ({:?}):\n{}",
+            o.status.code(),
+            tail.into_iter().rev().collect::<Vec<_>>().join("\n")
+        ))
     };
+    let _ = writeln!(
+        std::io::stderr(),
+        "\nmaking the Python environment of the tests in {} ({PYTHON_MODULES}; once, reused after)",
+        venv.display()
+    );
+    if !python.exists() {
+        run(
+            Path::new("python3"),
+            &["-m".as_ref(), "venv".as_ref(), venv.as_os_str()],
+            "python3 -m venv (Debian and Ubuntu: apt-get install python3-venv)",
+        )?;
+    }
+    run(
+        &python,
+        &[
+            "-m".as_ref(),
+            "pip".as_ref(),
+            "install".as_ref(),
+            "--quiet".as_ref(),
+            "--disable-pip-version-check".as_ref(),
+            "-r".as_ref(),
+            requirements.as_os_str(),
+        ],
+        &format!(
+            "pip install -r {} into {} (it needs the package index, https://pypi.org, or a \
+             mirror set in PIP_INDEX_URL)",
+            requirements.display(),
+            venv.display()
+        ),
+    )?;
+    check_imports(&python.to_string_lossy())?;
+    std::fs::write(&stamp, &wanted)
+        .map_err(|e| format!("cannot write {}: {e}", stamp.display()))?;
+    Ok(python.to_string_lossy().into_owned())
+}
+
+/// Whether the Python readers can run for `test`. Skipped (`false`, with a note on the
+/// terminal) under `TOUCHDOWN_SKIP_PYTHON=1`. When the environment cannot be made, the
+/// first test to ask fails with the reason, and the others skip pointing at it.
+pub(crate) fn python_readers_available(test: &str) -> bool {
     if std::env::var("TOUCHDOWN_SKIP_PYTHON").as_deref() == Ok("1") {
         // Straight to the terminal: the test harness hides what `eprintln!` prints in a
         // test that passes.
         let _ = writeln!(
             std::io::stderr(),
-            "\nSKIPPED {test} (TOUCHDOWN_SKIP_PYTHON=1): {why}"
+            "\nSKIPPED {test} (TOUCHDOWN_SKIP_PYTHON=1)"
+        );
+        return false;
+    }
+    let Err(why) = python_environment() else {
+        return true;
+    };
+    static REPORTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    if REPORTED.swap(true, Ordering::Relaxed) {
+        let _ = writeln!(
+            std::io::stderr(),
+            "\nSKIPPED {test}: no Python environment (the failing Python test says why)"
         );
         return false;
     }
     panic!(
-        "{why}\n\nThe Python readers are part of the tests: \
-         `pip install -r tests/python/requirements.txt`, \
-         or set TOUCHDOWN_SKIP_PYTHON=1 to skip this test."
+        "the Python tests need {PYTHON_MODULES}, and their environment could not be made:\n{why}\n\n\
+         Set TOUCHDOWN_PYTHON to an interpreter that has them, or TOUCHDOWN_SKIP_PYTHON=1 to \
+         skip the Python tests."
     );
 }
 
