@@ -10,7 +10,7 @@ use crate::sweep::Shard;
 use clap::{Parser, Subcommand};
 use kernels::isa::Isa;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Monte Carlo touchdown simulation of legged landers on asteroids.
 #[derive(Parser, Debug)]
@@ -56,7 +56,8 @@ pub struct SweepArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_name = "T", value_parser = parse_threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
-    /// Output file.
+    /// Output file; `-` writes to standard output (Arrow as an IPC stream). A device or
+    /// FIFO at PATH (or a symbolic link to one) is written into, never replaced.
     #[arg(long, value_name = "PATH", default_value = "sweep.arrow")]
     pub out: PathBuf,
     /// Output format.
@@ -134,8 +135,8 @@ pub struct PlotArgs {
     /// A sweep file (Arrow IPC or Parquet) or a trace file (Arrow IPC).
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
-    /// Folder to write the PNG files into (default: the file's folder); they are named
-    /// after the file, e.g. `sweep-stability-map.png`.
+    /// Folder to write the PNG files into (default: the file's folder; made if missing);
+    /// they are named after the file, e.g. `sweep-stability-map.png`.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
 }
@@ -146,7 +147,8 @@ pub struct MergeArgs {
     /// The shard files, in any order (Arrow IPC or Parquet).
     #[arg(value_name = "SHARD", required = true)]
     pub shards: Vec<PathBuf>,
-    /// Output file.
+    /// Output file; `-` writes to standard output (Arrow as an IPC stream). A device or
+    /// FIFO at PATH (or a symbolic link to one) is written into, never replaced.
     #[arg(long, value_name = "PATH", default_value = "sweep.arrow")]
     pub out: PathBuf,
     /// Output format.
@@ -166,7 +168,8 @@ pub struct TraceArgs {
     /// Index of the sample to run (accepts 1e6, 250000, 2.5e5).
     #[arg(long, value_name = "I", default_value = "0", value_parser = parse_count, allow_negative_numbers = true)]
     pub sample: u64,
-    /// Arrow IPC file to write the time history to.
+    /// Arrow IPC file to write the time history to; `-` writes an IPC stream to standard
+    /// output, and a device or FIFO is written into, never replaced.
     #[arg(long, value_name = "PATH", default_value = "trace.arrow")]
     pub out: PathBuf,
     /// Write one row every N steps.
@@ -235,12 +238,15 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Merge(args) => {
             let m = crate::output::merge::merge(&args.shards, &args.out, args.format)?;
-            print_out(&format!(
-                "merged {} shards, {} samples\nwrote {}\n",
-                m.shards,
-                m.rows,
-                args.out.display()
-            ));
+            say(
+                &format!(
+                    "merged {} shards, {} samples\nwrote {}\n",
+                    m.shards,
+                    m.rows,
+                    shown(&args.out)
+                ),
+                &args.out,
+            );
             Ok(())
         }
     }
@@ -279,11 +285,11 @@ fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
     let mut text = describe(&scenario, &sample, &summary);
     text.push_str(&format!(
         "\nwrote {}: {rows} rows (every {} of {} steps)\n",
-        args.out.display(),
+        shown(&args.out),
         args.every,
         summary.steps
     ));
-    print_out(&text);
+    say(&text, &args.out);
     Ok(())
 }
 
@@ -451,9 +457,16 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     } else {
         indicatif::ProgressBar::new(todo.end - todo.start).with_style(
             indicatif::ProgressStyle::with_template(
-                "{bar:40} {pos}/{len} samples  {per_sec}  ETA {eta}",
+                "{bar:40} {pos}/{len} samples  {rate}  ETA {eta}",
             )
-            .expect("valid template"),
+            .expect("valid template")
+            // Whole samples per second (indicatif's own `per_sec` has four decimals).
+            .with_key(
+                "rate",
+                |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                    let _ = write!(w, "{:.0} samples/s", state.per_sec());
+                },
+            ),
         )
     };
     let stop = stop_on_signals()?;
@@ -487,15 +500,24 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         } else {
             "SIGINT"
         };
-        return Err(Interrupted {
-            code: (128 + signal).min(255) as u8,
-            message: format!(
+        let message = match path {
+            Some(path) => format!(
                 "interrupted by {name}: {rows} of {} samples done, in {} (a valid file); \
                  continue with: touchdown sweep --resume {}",
                 range.end - range.start,
                 path.display(),
                 plan.out.display()
             ),
+            None => format!(
+                "interrupted by {name}: {rows} of {} samples done, written to {} as a valid \
+                 file; it is not a regular file, so the sweep cannot be resumed from it",
+                range.end - range.start,
+                shown(&plan.out)
+            ),
+        };
+        return Err(Interrupted {
+            code: (128 + signal).min(255) as u8,
+            message,
         }
         .into());
     }
@@ -525,8 +547,8 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
             100.0 * c as f64 / rows as f64
         ));
     }
-    t.push_str(&format!("wrote {}\n", plan.out.display()));
-    print_out(&t);
+    t.push_str(&format!("wrote {}\n", shown(&plan.out)));
+    say(&t, &plan.out);
     Ok(())
 }
 
@@ -572,6 +594,25 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
         ));
     }
     t
+}
+
+/// An output path as messages name it (`-` is standard output).
+fn shown(out: &Path) -> String {
+    if out.as_os_str() == "-" {
+        "standard output".to_string()
+    } else {
+        out.display().to_string()
+    }
+}
+
+/// Writes what a command has to say about its output `out`: to stdout, or to stderr when
+/// the output itself goes to stdout (`-`).
+fn say(text: &str, out: &Path) {
+    if out.as_os_str() == "-" {
+        eprint!("{text}");
+    } else {
+        print_out(text);
+    }
 }
 
 /// Writes to stdout; a closed pipe (`| head`) is not an error.

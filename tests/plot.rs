@@ -204,8 +204,17 @@ fn plot_refuses_what_it_cannot_draw() {
         (&["plot", "notes.txt"][..], "notes.txt is neither"),
         (&["plot", "cut.arrow"][..], "cut.arrow"),
         (
-            &["plot", "s.arrow", "--out-dir", "nowhere"][..],
-            "output folder nowhere does not exist",
+            &["plot", "s.arrow", "--out-dir", "notes.txt/pictures"][..],
+            "cannot make output folder notes.txt/pictures",
+        ),
+        (
+            &["plot", "s.arrow", "--out-dir", "notes.txt"][..],
+            "notes.txt is a file",
+        ),
+        // A file that cannot be drawn makes no folder.
+        (
+            &["plot", "notes.txt", "--out-dir", "new"][..],
+            "notes.txt is neither",
         ),
     ] {
         let before = dir.entries();
@@ -218,4 +227,14 @@ fn plot_refuses_what_it_cannot_draw() {
         assert!(!run.stderr.contains("panicked"), "{run}");
         assert_eq!(dir.entries(), before, "{run}");
     }
+}
+
+#[test]
+fn plot_makes_the_output_folder() {
+    let dir = TempDir::new("plot-folder");
+    let run = touchdown(dir.path(), &["trace", "--every", "20", "--out", "t.arrow"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let run = touchdown(dir.path(), &["plot", "t.arrow", "--out-dir", "new/deeper"]);
+    run.assert_ok();
+    assert!(dir.join("new/deeper/t-cg.png").is_file(), "{run}");
 }

@@ -171,10 +171,12 @@ fn report_refuses_what_is_not_a_sweep() {
             vec!["report", "s.toml"],
             "s.toml is neither an Arrow IPC file nor a Parquet file",
         ),
-        (vec!["report", "missing.arrow"], "missing.arrow"),
+        (vec!["report", "missing.arrow"], "cannot read missing.arrow"),
     ] {
         let run = touchdown(dir.path(), &args);
         assert_eq!(run.code, Some(2), "{run}");
         assert!(run.stderr.contains(expect), "{run}");
+        // A report reads a sweep, not a shard.
+        assert!(!run.stderr.contains("shard"), "{run}");
     }
 }

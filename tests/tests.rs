@@ -6,6 +6,7 @@ mod common;
 mod cpus;
 mod interrupt;
 mod outcome_rules;
+mod outputs;
 mod plot;
 mod python_example;
 mod report;

@@ -25,63 +25,138 @@ pub fn field(name: &str, data_type: DataType, unit: &str, description: &str) -> 
     )
 }
 
-/// A file written under a temporary name beside its final path and renamed onto it only
-/// by `commit`, so that no file under the final name is ever incomplete. Dropped without
-/// `commit`, it removes the temporary file.
+/// Where an output goes.
+#[derive(Debug, Clone)]
+enum Target {
+    /// A regular file (or none yet): written as `PATH.partial` beside it and renamed onto
+    /// it when complete. A symbolic link is followed: the file it names is replaced, the
+    /// link stays.
+    Regular { path: PathBuf, partial: PathBuf },
+    /// Something that is not a regular file (a device such as `/dev/null`, a FIFO, or a
+    /// symbolic link to one): written into directly, never replaced or removed.
+    Direct { path: PathBuf },
+    /// Standard output (`-`).
+    Stdout,
+}
+
+/// The stream an output is written to.
+pub enum Sink {
+    /// A file (regular, or a device or FIFO).
+    File(File),
+    /// Standard output.
+    Stdout(std::io::Stdout),
+}
+
+impl Write for Sink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            Sink::File(f) => f.write(buf),
+            Sink::Stdout(s) => s.write(buf),
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            Sink::File(f) => f.flush(),
+            Sink::Stdout(s) => s.flush(),
+        }
+    }
+}
+
+/// The buffered writer of an output.
+pub type Out = BufWriter<Sink>;
+
+/// An output file that appears under its name only when it is complete: a regular file is
+/// written under a temporary name beside its final path and renamed onto it by `commit`
+/// (dropped without `commit`, the temporary file is removed). An output that is not a
+/// regular file (a device, a FIFO, a symbolic link to one) is written into directly and
+/// never replaced, and `-` is standard output: such streams cannot be renamed, so they are
+/// complete when the writer says so.
 pub struct AtomicFile {
-    path: PathBuf,
-    partial: PathBuf,
+    target: Target,
     committed: bool,
 }
 
 impl AtomicFile {
-    /// Creates the temporary file for `path` and a buffered writer to it. Fails with a
-    /// message naming the path when its folder does not exist or cannot be written.
-    pub fn create(path: &Path) -> anyhow::Result<(AtomicFile, BufWriter<File>)> {
+    /// Opens the output `path` (`-` for standard output). Fails with a message naming the
+    /// path when its folder does not exist or it cannot be written.
+    pub fn create(path: &Path) -> anyhow::Result<(AtomicFile, Out)> {
         check_output_path(path)?;
-        let mut name = path.file_name().unwrap_or_default().to_os_string();
-        name.push(".partial");
-        let partial = path.with_file_name(name);
-        let file = File::create(&partial)
-            .map_err(|e| anyhow::anyhow!("cannot write output file {}: {e}", partial.display()))?;
+        let target = target_of(path)?;
+        let sink = match &target {
+            Target::Regular { partial, .. } => Sink::File(File::create(partial).map_err(|e| {
+                anyhow::anyhow!("cannot write output file {}: {e}", partial.display())
+            })?),
+            Target::Direct { path } => Sink::File(
+                std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(path)
+                    .map_err(|e| anyhow::anyhow!("cannot write to {}: {e}", path.display()))?,
+            ),
+            Target::Stdout => Sink::Stdout(std::io::stdout()),
+        };
         let handle = AtomicFile {
-            path: path.to_path_buf(),
-            partial,
+            target,
             committed: false,
         };
-        Ok((handle, BufWriter::with_capacity(1 << 20, file)))
+        Ok((handle, BufWriter::with_capacity(1 << 20, sink)))
     }
 
-    /// The temporary path the file is written under.
+    /// Where the bytes go while they are written (the temporary file of a regular output).
     #[must_use]
     pub fn partial_path(&self) -> &Path {
-        &self.partial
+        match &self.target {
+            Target::Regular { partial, .. } => partial,
+            Target::Direct { path } => path,
+            Target::Stdout => Path::new("-"),
+        }
     }
 
-    /// The final path.
+    /// Whether the output is a stream that is read as it is written (standard output), so
+    /// that Arrow goes as an IPC stream rather than an IPC file.
     #[must_use]
-    pub fn path(&self) -> &Path {
-        &self.path
+    pub fn is_stdout(&self) -> bool {
+        matches!(self.target, Target::Stdout)
     }
 
-    /// Flushes and syncs `writer`, then renames the file onto its final path.
-    pub fn commit(self, writer: BufWriter<File>) -> anyhow::Result<()> {
-        let path = self.path.clone();
-        self.commit_as(writer, &path)
+    /// Whether the output is renamed into place when complete (a regular file), so that a
+    /// file of another name (an interrupted sweep's) can be made beside it.
+    #[must_use]
+    pub fn is_regular(&self) -> bool {
+        matches!(self.target, Target::Regular { .. })
     }
 
-    /// Flushes and syncs `writer`, then renames the file onto `path` (for a file that is
-    /// valid but not what the final path promises, such as an interrupted sweep's).
-    pub fn commit_as(mut self, mut writer: BufWriter<File>, path: &Path) -> anyhow::Result<()> {
-        let context = |e: std::io::Error| {
-            anyhow::anyhow!("cannot finish output file {}: {e}", self.partial.display())
+    /// Flushes `writer`; a regular file is synced and renamed onto its final path.
+    pub fn commit(self, writer: Out) -> anyhow::Result<()> {
+        let path = match &self.target {
+            Target::Regular { path, .. } => Some(path.clone()),
+            _ => None,
         };
+        self.finish(writer, path.as_deref())
+    }
+
+    /// Flushes `writer`; a regular file is synced and renamed onto `path` instead of its
+    /// final path (for a file that is valid but not what the final path promises, such as
+    /// an interrupted sweep's). Returns whether it made `path`.
+    pub fn commit_as(self, writer: Out, path: &Path) -> anyhow::Result<bool> {
+        let regular = self.is_regular();
+        self.finish(writer, regular.then_some(path))?;
+        Ok(regular)
+    }
+
+    fn finish(mut self, mut writer: Out, rename_to: Option<&Path>) -> anyhow::Result<()> {
+        let shown = self.partial_path().display().to_string();
+        let context = |e: std::io::Error| anyhow::anyhow!("cannot finish output {shown}: {e}");
         writer.flush().map_err(context)?;
-        let file = writer.into_inner().map_err(|e| context(e.into_error()))?;
-        file.sync_all().map_err(context)?;
-        std::fs::rename(&self.partial, path).map_err(|e| {
-            anyhow::anyhow!("cannot move the finished file onto {}: {e}", path.display())
-        })?;
+        let sink = writer.into_inner().map_err(|e| context(e.into_error()))?;
+        if let (Sink::File(file), Some(path), Target::Regular { partial, .. }) =
+            (sink, rename_to, &self.target)
+        {
+            file.sync_all().map_err(context)?;
+            std::fs::rename(partial, path).map_err(|e| {
+                anyhow::anyhow!("cannot move the finished file onto {}: {e}", path.display())
+            })?;
+        }
         self.committed = true;
         Ok(())
     }
@@ -89,19 +164,63 @@ impl AtomicFile {
 
 impl Drop for AtomicFile {
     fn drop(&mut self) {
-        if !self.committed {
-            let _ = std::fs::remove_file(&self.partial);
+        if let (false, Target::Regular { partial, .. }) = (self.committed, &self.target) {
+            let _ = std::fs::remove_file(partial);
         }
     }
 }
 
+/// Where output `path` goes: standard output, a device or FIFO (followed through symbolic
+/// links) written into, or a regular file (the one a symbolic link names) renamed into place.
+fn target_of(path: &Path) -> anyhow::Result<Target> {
+    if path.as_os_str() == "-" {
+        return Ok(Target::Stdout);
+    }
+    if let Ok(m) = std::fs::metadata(path)
+        && !m.is_file()
+    {
+        return Ok(Target::Direct {
+            path: path.to_path_buf(),
+        });
+    }
+    // A symbolic link (to a regular file, or to nothing yet): replace what it names.
+    let mut real = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&real) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let to = std::fs::read_link(&real)
+                    .map_err(|e| anyhow::anyhow!("cannot follow {}: {e}", real.display()))?;
+                real = match real.parent() {
+                    Some(dir) => dir.join(to),
+                    None => to,
+                };
+            }
+            _ => break,
+        }
+    }
+    let mut name = real.file_name().unwrap_or_default().to_os_string();
+    name.push(".partial");
+    let partial = real.with_file_name(name);
+    Ok(Target::Regular {
+        path: real,
+        partial,
+    })
+}
+
 /// Refuses an output path whose folder is missing or that names a folder, before any work.
+/// `-` (standard output) and existing files of any kind other than folders are accepted.
 pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
+    if path.as_os_str() == "-" {
+        return Ok(());
+    }
     if path.as_os_str().is_empty() || path.file_name().is_none() {
         anyhow::bail!("output path {:?} names no file", path.display().to_string());
     }
     if path.is_dir() {
         anyhow::bail!("output path {} is a folder, not a file", path.display());
+    }
+    if std::fs::metadata(path).is_ok() {
+        return Ok(());
     }
     let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
@@ -122,4 +241,50 @@ pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// An Arrow IPC writer: the IPC file format (Feather v2), or the IPC stream format for
+/// standard output, where a reader reads as it comes.
+pub enum IpcWriter {
+    /// IPC file.
+    File(arrow_ipc::writer::FileWriter<Out>),
+    /// IPC stream.
+    Stream(arrow_ipc::writer::StreamWriter<Out>),
+}
+
+impl IpcWriter {
+    /// The writer `output` wants for `schema`.
+    pub fn new(
+        output: &AtomicFile,
+        out: Out,
+        schema: &arrow_schema::Schema,
+    ) -> anyhow::Result<IpcWriter> {
+        Ok(if output.is_stdout() {
+            IpcWriter::Stream(arrow_ipc::writer::StreamWriter::try_new(out, schema)?)
+        } else {
+            IpcWriter::File(arrow_ipc::writer::FileWriter::try_new(out, schema)?)
+        })
+    }
+
+    /// Writes a batch.
+    pub fn write(&mut self, b: &arrow_array::RecordBatch) -> Result<(), arrow_schema::ArrowError> {
+        match self {
+            IpcWriter::File(w) => w.write(b),
+            IpcWriter::Stream(w) => w.write(b),
+        }
+    }
+
+    /// Writes the end of the file or stream and gives the output back.
+    pub fn finish(self) -> Result<Out, arrow_schema::ArrowError> {
+        match self {
+            IpcWriter::File(mut w) => {
+                w.finish()?;
+                w.into_inner()
+            }
+            IpcWriter::Stream(mut w) => {
+                w.finish()?;
+                w.into_inner()
+            }
+        }
+    }
 }

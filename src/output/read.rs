@@ -15,7 +15,7 @@ pub fn format_of(path: &Path) -> anyhow::Result<Format> {
     let mut head = [0u8; 6];
     let n = File::open(path)
         .and_then(|mut f| f.read(&mut head))
-        .map_err(|e| anyhow!("cannot read shard {}: {e}", path.display()))?;
+        .map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
     match &head[..n] {
         [b'A', b'R', b'R', b'O', b'W', b'1'] => Ok(Format::Arrow),
         [b'P', b'A', b'R', b'1', ..] => Ok(Format::Parquet),

@@ -2,18 +2,15 @@
 //! order, as Arrow IPC or Parquet, written in batches of a fixed row count so that the
 //! bytes depend on the scenario and seed alone (not on threads or timing).
 
-use super::{AtomicFile, ENGINE, field};
+use super::{AtomicFile, ENGINE, IpcWriter, Out, field};
 use crate::scenario::INPUT_FIELDS;
 use crate::sweep::{Row, Shard};
 use arrow_array::builder::{Float64Builder, StringBuilder, UInt32Builder, UInt64Builder};
 use arrow_array::{ArrayRef, RecordBatch};
-use arrow_ipc::writer::FileWriter;
 use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use arrow_select::concat::concat_batches;
 use parquet::arrow::ArrowWriter;
 use std::collections::BTreeMap;
-use std::fs::File;
-use std::io::BufWriter;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -240,16 +237,17 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
     Ok(RecordBatch::try_new(schema.clone(), cols)?)
 }
 
-enum Sink {
-    Arrow(FileWriter<BufWriter<File>>),
-    Parquet(ArrowWriter<BufWriter<File>>),
+enum Writer {
+    Arrow(IpcWriter),
+    Parquet(ArrowWriter<Out>),
 }
 
 /// Writes rows as they come, in batches of `BATCH_ROWS`, to a file that appears under its
 /// name only after `finish`.
 pub struct SweepWriter {
+    path: std::path::PathBuf,
     file: AtomicFile,
-    sink: Sink,
+    sink: Writer,
     schema: SchemaRef,
     legs: usize,
     pending: Vec<Row>,
@@ -267,17 +265,18 @@ impl SweepWriter {
         let schema = schema(legs, info);
         let (file, out) = AtomicFile::create(path)?;
         let sink = match format {
-            Format::Arrow => Sink::Arrow(FileWriter::try_new(out, &schema)?),
+            Format::Arrow => Writer::Arrow(IpcWriter::new(&file, out, &schema)?),
             Format::Parquet => {
                 let props = parquet::file::properties::WriterProperties::builder()
                     .set_compression(parquet::basic::Compression::SNAPPY)
                     .set_max_row_group_row_count(Some(BATCH_ROWS))
                     .set_created_by(ENGINE.to_string())
                     .build();
-                Sink::Parquet(ArrowWriter::try_new(out, schema.clone(), Some(props))?)
+                Writer::Parquet(ArrowWriter::try_new(out, schema.clone(), Some(props))?)
             }
         };
         Ok(SweepWriter {
+            path: path.to_path_buf(),
             file,
             sink,
             schema,
@@ -318,8 +317,8 @@ impl SweepWriter {
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
         debug_assert!(self.pending.is_empty(), "write_batch after push");
         let written = match &mut self.sink {
-            Sink::Arrow(w) => w.write(b).map_err(|e| e.to_string()),
-            Sink::Parquet(w) => w.write(b).map_err(|e| e.to_string()),
+            Writer::Arrow(w) => w.write(b).map_err(|e| e.to_string()),
+            Writer::Parquet(w) => w.write(b).map_err(|e| e.to_string()),
         };
         written.map_err(|e| self.write_error(&e))?;
         self.rows += b.num_rows() as u64;
@@ -328,15 +327,22 @@ impl SweepWriter {
 
     /// Writes the last batch, closes the file and gives it its name. Returns the row count.
     pub fn finish(self) -> anyhow::Result<u64> {
-        self.close(None)
+        Ok(self.close(None)?.0)
     }
 
     /// Writes the rows pushed so far and closes the file as a valid one, under the name of
     /// an interrupted sweep (`OUT.interrupted`), not the final name. Returns the row count
-    /// and that path.
-    pub fn finish_interrupted(self) -> anyhow::Result<(u64, std::path::PathBuf)> {
-        let path = super::resume::interrupted_path(self.file.path());
-        Ok((self.close(Some(&path))?, path))
+    /// and that path; `None` where the output is not a regular file (a device, a FIFO,
+    /// standard output): the rows went there, and nothing is made beside it.
+    pub fn finish_interrupted(self) -> anyhow::Result<(u64, Option<std::path::PathBuf>)> {
+        let path = super::resume::interrupted_path(self.path());
+        let (rows, made) = self.close(Some(&path))?;
+        Ok((rows, made.then_some(path)))
+    }
+
+    /// The path the sweep was asked to write.
+    fn path(&self) -> &Path {
+        &self.path
     }
 
     /// An error writing the file, naming it.
@@ -347,14 +353,13 @@ impl SweepWriter {
         )
     }
 
-    fn close(mut self, name: Option<&Path>) -> anyhow::Result<u64> {
+    /// Writes the last rows and closes the file, renamed onto `name` instead of its final
+    /// path if given. Returns the row count, and whether `name` was made.
+    fn close(mut self, name: Option<&Path>) -> anyhow::Result<(u64, bool)> {
         self.flush()?;
         let out = match self.sink {
-            Sink::Arrow(mut w) => w
-                .finish()
-                .and_then(|()| w.into_inner())
-                .map_err(|e| e.to_string()),
-            Sink::Parquet(w) => w.into_inner().map_err(|e| e.to_string()),
+            Writer::Arrow(w) => w.finish().map_err(|e| e.to_string()),
+            Writer::Parquet(w) => w.into_inner().map_err(|e| e.to_string()),
         };
         let out = out.map_err(|e| {
             anyhow::anyhow!(
@@ -362,11 +367,14 @@ impl SweepWriter {
                 self.file.partial_path().display()
             )
         })?;
-        match name {
-            None => self.file.commit(out)?,
+        let made = match name {
+            None => {
+                self.file.commit(out)?;
+                false
+            }
             Some(path) => self.file.commit_as(out, path)?,
-        }
-        Ok(self.rows)
+        };
+        Ok((self.rows, made))
     }
 }
 

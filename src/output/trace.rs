@@ -1,11 +1,10 @@
 //! The time history of one sample (MODEL.md section 9): one row per step, or per
 //! `every` steps, as an Arrow IPC file written batch by batch.
 
-use super::{AtomicFile, ENGINE, field};
+use super::{AtomicFile, ENGINE, IpcWriter, field};
 use crate::reference::{Model, StepReport, Summary};
 use crate::sampling::Sample;
 use arrow_array::{ArrayRef, Float64Array, RecordBatch};
-use arrow_ipc::writer::FileWriter;
 use arrow_schema::{DataType, Schema};
 use glam::{DMat3, EulerRot};
 use std::collections::BTreeMap;
@@ -170,13 +169,13 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     let schema = Arc::new(Schema::new_with_metadata(fields, meta));
 
     let (file, out) = AtomicFile::create(path)?;
-    let mut writer = FileWriter::try_new(out, &schema)?;
+    let mut writer = IpcWriter::new(&file, out, &schema)?;
     let mut data: Vec<Vec<f64>> = vec![Vec::with_capacity(BATCH_ROWS); cols.len()];
     let mut buf = Vec::with_capacity(cols.len());
     let mut rows = 0u64;
     let mut index = 0u64;
     let mut failure: Option<anyhow::Error> = None;
-    let flush = |data: &mut Vec<Vec<f64>>, writer: &mut FileWriter<_>| -> anyhow::Result<()> {
+    let flush = |data: &mut Vec<Vec<f64>>, writer: &mut IpcWriter| -> anyhow::Result<()> {
         let arrays: Vec<ArrayRef> = data
             .iter_mut()
             .map(|c| Arc::new(Float64Array::from(std::mem::take(c))) as ArrayRef)
@@ -208,7 +207,6 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     if !data[0].is_empty() {
         flush(&mut data, &mut writer)?;
     }
-    writer.finish()?;
-    file.commit(writer.into_inner()?)?;
+    file.commit(writer.finish()?)?;
     Ok(rows)
 }

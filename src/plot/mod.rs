@@ -185,19 +185,25 @@ pub fn plot(path: &Path, out_dir: Option<&Path>) -> anyhow::Result<Vec<PathBuf>>
             _ => PathBuf::from("."),
         },
     };
-    if !dir.is_dir() {
-        bail!("output folder {} does not exist", dir.display());
-    }
     let name = |what: &str| dir.join(format!("{stem}-{what}.png"));
     let format = format_of(path)?;
     let (schema, _) = open(path, format)?;
-    match schema.metadata().get("touchdown.kind").map(String::as_str) {
-        Some("sweep") => sweep::plot(path, &name),
-        Some("trace") => trace::plot(path, &name),
-        _ => bail!(
+    let kind = schema.metadata().get("touchdown.kind").map(String::as_str);
+    if !matches!(kind, Some("sweep" | "trace")) {
+        bail!(
             "{} is neither a sweep nor a trace file of touchdown",
             path.display()
-        ),
+        );
+    }
+    // The folder is made (with its parents) once the file is known to be drawable.
+    if dir.exists() && !dir.is_dir() {
+        bail!("output folder {} is a file", dir.display());
+    }
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| anyhow!("cannot make output folder {}: {e}", dir.display()))?;
+    match kind {
+        Some("sweep") => sweep::plot(path, &name),
+        _ => trace::plot(path, &name),
     }
 }
 
