@@ -32,6 +32,10 @@ pub enum Command {
     /// Summarise a sweep file: outcomes with 95 % intervals, the allowable slope per
     /// azimuth sector, peak loads (Markdown on stdout).
     Report(ReportArgs),
+    /// Compare two sweeps of the same seed sample by sample (paired: the same landers
+    /// wherever the scenarios draw an input alike): outcome shares, their differences with
+    /// 95 % intervals, and which samples changed outcome (Markdown on stdout).
+    Compare(CompareArgs),
     /// Join the shard files of one sweep (`sweep --shard K/N`) into the file the sweep
     /// writes when run in one process.
     Merge(MergeArgs),
@@ -60,9 +64,10 @@ pub struct SweepArgs {
     /// FIFO at PATH (or a symbolic link to one) is written into, never replaced.
     #[arg(long, value_name = "PATH", default_value = "sweep.arrow")]
     pub out: PathBuf,
-    /// Output format.
-    #[arg(long, value_enum, default_value = "arrow")]
-    pub format: Format,
+    /// Output format (default: from the extension of --out, `.parquet` for Parquet, else
+    /// Arrow); refused when it contradicts the extension.
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
@@ -129,6 +134,17 @@ pub struct ReportArgs {
     pub sweep: PathBuf,
 }
 
+/// Flags of `touchdown compare`.
+#[derive(clap::Args, Debug)]
+pub struct CompareArgs {
+    /// The first sweep file (A).
+    #[arg(value_name = "A")]
+    pub a: PathBuf,
+    /// The second sweep file (B), of the same seed and samples.
+    #[arg(value_name = "B")]
+    pub b: PathBuf,
+}
+
 /// Flags of `touchdown plot`.
 #[derive(clap::Args, Debug)]
 pub struct PlotArgs {
@@ -151,21 +167,28 @@ pub struct MergeArgs {
     /// FIFO at PATH (or a symbolic link to one) is written into, never replaced.
     #[arg(long, value_name = "PATH", default_value = "sweep.arrow")]
     pub out: PathBuf,
-    /// Output format.
-    #[arg(long, value_enum, default_value = "arrow")]
-    pub format: Format,
+    /// Output format (default: from the extension of --out, `.parquet` for Parquet, else
+    /// Arrow); refused when it contradicts the extension.
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
 }
 
 /// Flags of `touchdown trace`.
 #[derive(clap::Args, Debug)]
 pub struct TraceArgs {
-    /// Scenario file (TOML); without it, the default sweep of MODEL.md section 11.
+    /// A sweep or shard file (Arrow or Parquet): trace its sample I, with the scenario and
+    /// seed it ran with (stored in the file), exactly as its row was computed.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["scenario", "seed"])]
+    pub sweep: Option<PathBuf>,
+    /// Scenario file (TOML); without it (and without --sweep), the default sweep of
+    /// MODEL.md section 11.
     #[arg(long, value_name = "FILE")]
     pub scenario: Option<PathBuf>,
     /// Seed of the sweep (overrides the scenario's `seed`).
     #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
-    /// Index of the sample to run (accepts 1e6, 250000, 2.5e5).
+    /// Index of the sample to run, as in the sweep's `sample` column (accepts 1e6, 250000,
+    /// 2.5e5).
     #[arg(long, value_name = "I", default_value = "0", value_parser = parse_count, allow_negative_numbers = true)]
     pub sample: u64,
     /// Arrow IPC file to write the time history to; `-` writes an IPC stream to standard
@@ -230,6 +253,10 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             print_out(&crate::report::report(&args.sweep)?);
             Ok(())
         }
+        Command::Compare(args) => {
+            print_out(&crate::compare::compare(&args.a, &args.b)?);
+            Ok(())
+        }
         Command::Plot(args) => {
             for p in crate::plot::plot(&args.file, args.out_dir.as_deref())? {
                 print_out(&format!("wrote {}\n", p.display()));
@@ -237,7 +264,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             Ok(())
         }
         Command::Merge(args) => {
-            let m = crate::output::merge::merge(&args.shards, &args.out, args.format)?;
+            let format = output_format(&args.out, args.format)?;
+            let m = crate::output::merge::merge(&args.shards, &args.out, format)?;
             say(
                 &format!(
                     "merged {} shards, {} samples\nwrote {}\n",
@@ -266,12 +294,67 @@ fn load_scenario(path: Option<&PathBuf>, seed: Option<u64>) -> anyhow::Result<(S
     if let Some(s) = seed {
         scenario.seed = s;
     }
+    // The text stored as provenance is the scenario that runs, seed included.
+    let text = crate::scenario::with_seed(&text, scenario.seed);
     Ok((scenario, text))
+}
+
+/// The scenario (with its seed) that a sweep or shard file `path` ran, and its text; checks
+/// that sample `index` is one of its samples.
+fn scenario_of_sweep(path: &Path, index: u64) -> anyhow::Result<(Scenario, String)> {
+    let format = crate::output::read::format_of(path)?;
+    let (schema, _) = crate::output::read::open(path, format)?;
+    let meta = schema.metadata();
+    let get = |key: &str| {
+        meta.get(key).ok_or_else(|| {
+            anyhow::anyhow!(
+                "{} is not a sweep file of touchdown (no {key})",
+                path.display()
+            )
+        })
+    };
+    if get("touchdown.kind")? != "sweep" {
+        anyhow::bail!(
+            "{} is a {} file, not a sweep",
+            path.display(),
+            get("touchdown.kind")?
+        );
+    }
+    let text = get("touchdown.scenario")?.clone();
+    let number = |key: &str| -> anyhow::Result<u64> {
+        get(key)?
+            .parse()
+            .map_err(|_| anyhow::anyhow!("{}: {key} is not a whole number", path.display()))
+    };
+    let (seed, samples) = (number("touchdown.seed")?, number("touchdown.samples")?);
+    let mut scenario = Scenario::from_toml(&text)
+        .map_err(|e| anyhow::anyhow!("the scenario stored in {}: {e}", path.display()))?;
+    scenario.seed = seed;
+    if index >= samples {
+        anyhow::bail!(
+            "--sample {index}: {} has samples 0 to {} (its sweep ran {samples})",
+            path.display(),
+            samples.saturating_sub(1)
+        );
+    }
+    let engine = get("touchdown.engine")?;
+    if engine != crate::output::ENGINE {
+        eprintln!(
+            "touchdown: warning: {} was written by {engine}, this is {}: the trace may differ \
+             from its row",
+            path.display(),
+            crate::output::ENGINE
+        );
+    }
+    Ok((scenario, crate::scenario::with_seed(&text, seed)))
 }
 
 fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
     crate::output::check_output_path(&args.out)?;
-    let (scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+    let (scenario, text) = match &args.sweep {
+        Some(sweep) => scenario_of_sweep(sweep, args.sample)?,
+        None => load_scenario(args.scenario.as_ref(), args.seed)?,
+    };
     let model = Model::new(&scenario);
     let sample = sampling::sample(&scenario, args.sample);
     let summary = reference::run(&model, &sample, |_| {});
@@ -284,7 +367,7 @@ fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
     let rows = trace::write(&args.out, &model, &info, args.every)?;
     let mut text = describe(&scenario, &sample, &summary);
     text.push_str(&format!(
-        "\nwrote {}: {rows} rows (every {} of {} steps)\n",
+        "\nwrote {}: {rows} rows (every {} of {} steps, and the state at the decision)\n",
         shown(&args.out),
         args.every,
         summary.steps
@@ -368,7 +451,7 @@ impl SweepPlan {
             text,
             samples,
             shard: args.shard,
-            format: args.format,
+            format: output_format(&args.out, args.format)?,
             out: args.out.clone(),
             isa: args.kernel.isa()?,
             resume: None,
@@ -594,6 +677,34 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
         ));
     }
     t
+}
+
+/// The format of output `out`: `--format` if given, else from the extension (`.parquet`
+/// or `.pq`: Parquet; anything else: Arrow). A `--format` that contradicts the extension
+/// (`--format arrow --out x.parquet`) is refused.
+fn output_format(out: &Path, flag: Option<Format>) -> anyhow::Result<Format> {
+    let ext = out
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let from_ext = match ext.as_deref() {
+        Some("parquet" | "pq") => Some(Format::Parquet),
+        Some("arrow" | "feather" | "ipc" | "arrows") => Some(Format::Arrow),
+        _ => None,
+    };
+    match (flag, from_ext) {
+        (Some(f), Some(e)) if f != e => anyhow::bail!(
+            "--format {} contradicts the extension of --out {} ({} file): drop --format or \
+             rename the file",
+            f.key(),
+            out.display(),
+            match e {
+                Format::Arrow => "an arrow",
+                Format::Parquet => "a parquet",
+            }
+        ),
+        (Some(f), _) => Ok(f),
+        (None, e) => Ok(e.unwrap_or(Format::Arrow)),
+    }
 }
 
 /// An output path as messages name it (`-` is standard output).

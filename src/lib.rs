@@ -4,6 +4,7 @@
 //! `reference` is the scalar physics of one lander, `output` writes Arrow files.
 
 pub mod cli;
+pub mod compare;
 pub mod output;
 pub mod plot;
 pub mod reference;

@@ -58,23 +58,107 @@ pub fn wilson_interval(k: u64, n: u64) -> (f64, f64) {
     (lo, hi)
 }
 
-/// The largest slope `s` of `samples` (slope, stable) such that at least
-/// `ALLOWABLE_STABLE` of the samples with a slope at most `s` are stable, counting only
-/// slopes with at least `MIN_SAMPLES` samples at or below them. `None` when no slope is.
-#[must_use]
-pub fn allowable_slope(samples: &mut [(f64, bool)]) -> Option<f64> {
-    samples.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut stable = 0usize;
-    let mut best = None;
-    for (i, (slope, ok)) in samples.iter().enumerate() {
-        stable += usize::from(*ok);
-        let n = i + 1;
-        let last_of_slope = samples.get(n).is_none_or(|next| next.0 > *slope);
-        if last_of_slope && n >= MIN_SAMPLES && stable as f64 >= ALLOWABLE_STABLE * n as f64 {
-            best = Some(*slope);
+/// The allowable slope of one sector's samples.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Allowable {
+    /// Fewer than `MIN_SAMPLES` samples in the sector: nothing can be said.
+    TooFewSamples(usize),
+    /// No slope with at least `MIN_SAMPLES` samples at or below it has `ALLOWABLE_STABLE`
+    /// of them stable; `below_deg` bounds the true allowable slope with 95 % confidence
+    /// (it may be none at all).
+    NoSlope { below_deg: f64 },
+    /// The allowable slope, and its 95 % interval.
+    Slope {
+        slope_deg: f64,
+        low_deg: f64,
+        high_deg: f64,
+    },
+}
+
+impl Allowable {
+    /// The allowable slope, if there is one.
+    #[must_use]
+    pub fn slope_deg(self) -> Option<f64> {
+        match self {
+            Allowable::Slope { slope_deg, .. } => Some(slope_deg),
+            _ => None,
         }
     }
-    best
+
+    /// The report's cell: the slope, or why there is none.
+    #[must_use]
+    pub fn cell(self) -> String {
+        match self {
+            Allowable::TooFewSamples(n) => format!("too few samples ({n})"),
+            Allowable::NoSlope { .. } => {
+                format!("no slope with ≥ {:.0} % stable", 100.0 * ALLOWABLE_STABLE)
+            }
+            Allowable::Slope { slope_deg, .. } => format!("{slope_deg:.1} deg"),
+        }
+    }
+
+    /// The report's cell of the 95 % interval.
+    #[must_use]
+    pub fn interval_cell(self) -> String {
+        match self {
+            Allowable::TooFewSamples(_) => "–".to_string(),
+            Allowable::NoSlope { below_deg } => format!("0.0–{below_deg:.1} deg"),
+            Allowable::Slope {
+                low_deg, high_deg, ..
+            } => format!("{low_deg:.1}–{high_deg:.1} deg"),
+        }
+    }
+}
+
+/// The allowable slope of `samples` (slope, stable) of one sector: the largest slope `s`
+/// such that at least `ALLOWABLE_STABLE` of the samples with a slope at most `s` are
+/// stable, counting only slopes with at least `MIN_SAMPLES` samples at or below them.
+///
+/// Its 95 % interval inverts the Wilson test of "the stable share at or below `s` is
+/// `ALLOWABLE_STABLE`": it runs from the largest slope whose share's 95 % Wilson interval
+/// lies wholly at or above it (0 when none does: the true slope may be below the smallest
+/// one resolved) to the largest slope whose interval still reaches it (where the share
+/// falls with the slope, as it does, the true allowable slope is inside with 95 %
+/// confidence). Sorts `samples`.
+#[must_use]
+pub fn allowable_slope(samples: &mut [(f64, bool)]) -> Allowable {
+    if samples.len() < MIN_SAMPLES {
+        return Allowable::TooFewSamples(samples.len());
+    }
+    samples.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut stable = 0u64;
+    let (mut best, mut low, mut high, mut first) = (None, None, None, None);
+    for (i, (slope, ok)) in samples.iter().enumerate() {
+        stable += u64::from(*ok);
+        let n = i + 1;
+        let last_of_slope = samples.get(n).is_none_or(|next| next.0 > *slope);
+        if !last_of_slope || n < MIN_SAMPLES {
+            continue;
+        }
+        first.get_or_insert(*slope);
+        let (lo, hi) = wilson_interval(stable, n as u64);
+        if stable as f64 >= ALLOWABLE_STABLE * n as f64 {
+            best = Some(*slope);
+        }
+        if lo >= ALLOWABLE_STABLE {
+            low = Some(*slope);
+        }
+        if hi >= ALLOWABLE_STABLE {
+            high = Some(*slope);
+        }
+    }
+    // `first` is set: the sector has at least MIN_SAMPLES samples.
+    let resolved = first.unwrap_or(0.0);
+    match best {
+        None => Allowable::NoSlope {
+            below_deg: high.unwrap_or(resolved),
+        },
+        Some(slope_deg) => Allowable::Slope {
+            slope_deg,
+            low_deg: low.unwrap_or(0.0),
+            high_deg: high.unwrap_or(slope_deg),
+        },
+    }
 }
 
 /// The `q`-quantile of `values` (nearest rank), 0 for none; sorts `values`.
@@ -204,26 +288,30 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
     }
     let _ = writeln!(
         t,
-        "\n## Allowable slope\n\nThe largest slope at or below which at least {:.0} % of the \
-         samples are stable, per sector of downhill azimuth relative to the lander \
+        "\n## Allowable slope\n\nThe largest slope at or below which at least {stable:.0} % of \
+         the samples are stable, per sector of downhill azimuth relative to the lander \
          (`downhill_azimuth_deg - yaw_deg`); only slopes with at least {MIN_SAMPLES} samples \
-         at or below them count.\n",
-        100.0 * ALLOWABLE_STABLE
+         at or below them count (\"too few samples\": the sector has fewer). The 95 % \
+         interval runs from the largest slope whose stable share's 95 % Wilson interval lies \
+         at or above {stable:.0} % to the largest whose interval still reaches it.\n",
+        stable = 100.0 * ALLOWABLE_STABLE
     );
     let _ = writeln!(
         t,
-        "| azimuth sector | samples | stable | allowable slope |\n|---|---:|---:|---:|"
+        "| azimuth sector | samples | stable | allowable slope | 95 % interval |\n|---|---:|---:|---:|---:|"
     );
     for (k, s) in sectors.iter_mut().enumerate() {
         let stable = s.iter().filter(|x| x.1).count();
-        let allowable = allowable_slope(s).map_or("none".to_string(), |a| format!("{a:.1} deg"));
+        let allowable = allowable_slope(s);
         let _ = writeln!(
             t,
-            "| {:.0}–{:.0} deg | {} | {:.1} % | {allowable} |",
+            "| {:.0}–{:.0} deg | {} | {:.1} % | {} | {} |",
             k as f64 * SECTOR_DEG,
             (k + 1) as f64 * SECTOR_DEG,
             s.len(),
-            100.0 * stable as f64 / s.len().max(1) as f64
+            100.0 * stable as f64 / s.len().max(1) as f64,
+            allowable.cell(),
+            allowable.interval_cell()
         );
     }
     let _ = writeln!(
@@ -240,6 +328,24 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
             l.name, l.unit
         );
     }
+    let dampers_off = meta
+        .get("touchdown.scenario")
+        .and_then(|text| crate::scenario::Scenario::from_toml(text).ok())
+        .is_some_and(|s| !s.damper.enabled);
+    if dampers_off {
+        let _ = writeln!(
+            t,
+            "\nThe dampers are off in this scenario (`damper.enabled = false`): the legs are \
+             rigid struts, so stroke and absorbed energy are 0."
+        );
+    }
+    let _ = writeln!(
+        t,
+        "\n## One sample in detail\n\n`touchdown trace --sweep {} --sample I` runs the sample \
+         of index I (the `sample` column) again with this file's scenario and seed and writes \
+         its time history; `touchdown plot` draws it.",
+        path.display()
+    );
     Ok(t)
 }
 
@@ -278,12 +384,34 @@ mod tests {
         // share at or below s stays 1 up to 39.9; past 40 it is 400 / n, below 0.99 from
         // n = 405 (s = 40.4) on; at s = 40.0..40.3 it is 400/401..400/404 >= 0.99.
         let mut s: Vec<(f64, bool)> = (0..1000).map(|i| (f64::from(i) / 10.0, i < 400)).collect();
-        assert_eq!(allowable_slope(&mut s), Some(40.3));
-        // Fewer than MIN_SAMPLES at or below every slope: nothing allowable.
+        let a = allowable_slope(&mut s);
+        assert_eq!(a.slope_deg(), Some(40.3));
+        // The interval, from the closed form: Wilson's lower bound is n / (n + z^2) = 0.99049
+        // at n = 400, all stable (s = 39.9), and 0.98601 at 400/401 (s = 40.0); the upper
+        // bound of 400/n is 0.99003 at n = 408 (s = 40.7) and 0.98838 at n = 409.
+        let Allowable::Slope {
+            low_deg, high_deg, ..
+        } = a
+        else {
+            panic!("{a:?}")
+        };
+        assert_eq!((low_deg, high_deg), (39.9, 40.7), "{a:?}");
+        assert_eq!(a.cell(), "40.3 deg");
+        assert_eq!(a.interval_cell(), "39.9–40.7 deg");
+        // Fewer than MIN_SAMPLES in the sector: too few to say anything.
         let mut few: Vec<(f64, bool)> = (0..50).map(|i| (f64::from(i), true)).collect();
-        assert_eq!(allowable_slope(&mut few), None);
-        // Everything unstable: nothing allowable.
+        assert_eq!(allowable_slope(&mut few), Allowable::TooFewSamples(50));
+        assert_eq!(allowable_slope(&mut few).cell(), "too few samples (50)");
+        // Everything unstable: no slope, and below the first resolved slope (the 100th
+        // sample, 99 deg) with 95 % confidence.
         let mut none: Vec<(f64, bool)> = (0..500).map(|i| (f64::from(i), false)).collect();
-        assert_eq!(allowable_slope(&mut none), None);
+        assert_eq!(
+            allowable_slope(&mut none),
+            Allowable::NoSlope { below_deg: 99.0 }
+        );
+        assert_eq!(
+            allowable_slope(&mut none).cell(),
+            "no slope with ≥ 99 % stable"
+        );
     }
 }

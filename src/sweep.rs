@@ -170,6 +170,8 @@ fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
     let normal = DVec3::from_array(block.surface.normal.lane(i));
     let attitude = DQuat::from_array(block.attitude.lane(i));
     let cos_tilt = (attitude * DVec3::Z).dot(normal);
+    // With the final state, as the reference's `finish`: the maximum is never below it.
+    let min_cos_tilt = at(&t.min_cos_tilt).min(cos_tilt);
     let moved = DVec3::from_array(block.position_m.lane(i)) - DVec3::from_array(t.start_m.lane(i));
     let along = moved - normal * normal.dot(moved);
     let finite_or_zero = |x: f64| if x.is_finite() { x } else { 0.0 };
@@ -179,7 +181,7 @@ fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
         decided_s: at(&block.t_s),
         steps: at(&t.steps) as u64,
         final_tilt_deg: finite_or_zero(libm::acos(cos_tilt.clamp(-1.0, 1.0)).to_degrees()),
-        max_tilt_deg: libm::acos(at(&t.min_cos_tilt).clamp(-1.0, 1.0)).to_degrees(),
+        max_tilt_deg: libm::acos(min_cos_tilt.clamp(-1.0, 1.0)).to_degrees(),
         displacement_m: finite_or_zero(along.length()),
         peak_acceleration_m_s2: finite_or_zero(at(&t.peak_acceleration_squared).sqrt()),
         peak_acceleration_z_body_m_s2: finite_or_zero(at(&t.peak_acceleration_z)),

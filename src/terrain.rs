@@ -4,7 +4,7 @@
 //! The tiles depend on the scenario seed alone and are built once per run; every sample
 //! picks a tile and an offset (see `sampling`), so memory does not grow with the samples.
 
-use crate::sampling::{splitmix64, standard_normal};
+use crate::sampling::{normal_quantile, splitmix64, uniform_open01};
 use crate::scenario::Roughness;
 use kernels::terrain::Terrain;
 use rand_core::SeedableRng;
@@ -25,7 +25,9 @@ pub fn build(roughness: &Roughness, seed: u64) -> Option<Terrain> {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(splitmix64(
             seed ^ 0x7E44_A1F0_0000_0000 ^ tile as u64,
         ));
-        let noise: Vec<f64> = (0..n * n).map(|_| standard_normal(&mut rng)).collect();
+        let noise: Vec<f64> = (0..n * n)
+            .map(|_| normal_quantile(uniform_open01(&mut rng)))
+            .collect();
         let mut h = blur_periodic(&noise, n, &kernel);
         let mean = h.iter().sum::<f64>() / h.len() as f64;
         let rms = (h.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / h.len() as f64).sqrt();

@@ -12,7 +12,8 @@ use arrow_ipc::reader::FileReader;
 use std::collections::HashMap;
 use std::path::Path;
 
-/// The numbers of the `wrote PATH: R rows (every E of S steps)` line.
+/// The numbers of the `wrote PATH: R rows (every E of S steps, and the state at the
+/// decision)` line.
 #[derive(Debug, PartialEq)]
 struct Wrote {
     path: String,
@@ -29,8 +30,13 @@ fn wrote(stdout: &str) -> Wrote {
     let parse = || -> Option<Wrote> {
         let (path, rest) = line.strip_prefix("wrote ")?.rsplit_once(": ")?;
         let w: Vec<&str> = rest.split_whitespace().collect();
-        // ["R", "rows", "(every", "E", "of", "S", "steps)"]
-        if w.len() != 7 || w[1] != "rows" || w[2] != "(every" || w[6] != "steps)" {
+        // ["R", "rows", "(every", "E", "of", "S", "steps,", "and the state at the decision)"]
+        if w.len() != 13
+            || w[1] != "rows"
+            || w[2] != "(every"
+            || w[6] != "steps,"
+            || w[7..].join(" ") != "and the state at the decision)"
+        {
             return None;
         }
         Some(Wrote {
@@ -408,7 +414,7 @@ fn trace_rows_match_the_summary_and_runs_repeat_exactly() {
         w,
         Wrote {
             path: "a.arrow".into(),
-            rows: steps.div_ceil(10),
+            rows: steps.div_ceil(10) + 1,
             every: 10,
             steps,
         },
@@ -435,9 +441,10 @@ fn trace_rows_match_the_summary_and_runs_repeat_exactly() {
         meta("touchdown.outcome"),
         Some(summary_outcome(&first.stdout).as_str())
     );
+    // The scenario that ran, with the seed of --seed.
     assert_eq!(
         meta("touchdown.scenario"),
-        Some(touchdown::scenario::DEFAULT_TOML)
+        Some(touchdown::scenario::DEFAULT_TOML.replace("\nseed = 1\n", "\nseed = 7\n")).as_deref()
     );
     for leg in 0..4 {
         assert!(
@@ -495,7 +502,11 @@ fn every_step_is_a_row_by_default() {
     let w = wrote(&run.stdout);
     assert_eq!(w.path, "trace.arrow");
     assert_eq!((w.every, w.steps), (1, summary_steps(&run.stdout)));
-    assert_eq!(w.rows, w.steps);
+    assert_eq!(
+        w.rows,
+        w.steps + 1,
+        "a row per step and one of the decision"
+    );
     assert_eq!(read_trace(&dir.join("trace.arrow")).rows as u64, w.rows);
 }
 
@@ -509,7 +520,7 @@ fn check_with_python(dir: &TempDir, args: &[&str], out: &str, legs: usize) {
     let run = touchdown(dir.path(), &all);
     run.assert_ok();
     let w = wrote(&run.stdout);
-    assert_eq!(w.rows, w.steps.div_ceil(w.every));
+    assert_eq!(w.rows, w.steps.div_ceil(w.every) + 1);
 
     run_python_check(
         "check_trace.py",

@@ -121,6 +121,22 @@ fn resume_to_the_end(dir: &TempDir, out: &str, whole: &str, samples: u64) {
             .contains(&format!("samples                 {samples}\n")),
         "{resumed}"
     );
+    // Its outcome counts are of every row of the file, those it took over included.
+    let counted: u64 = resumed
+        .stdout
+        .lines()
+        .filter(|l| l.starts_with("  ") && l.ends_with('%'))
+        .map(|l| {
+            l.split_whitespace()
+                .nth(1)
+                .and_then(|n| n.parse::<u64>().ok())
+        })
+        .map(|n| n.unwrap_or_else(|| panic!("cannot read the outcome lines of\n{resumed}")))
+        .sum();
+    assert_eq!(
+        counted, samples,
+        "outcome counts of the resumed sweep:\n{resumed}"
+    );
     assert_eq!(dir.entries(), [out, "s.toml", whole]);
 }
 

@@ -178,8 +178,14 @@ fn compare_with_report(
         "outcome counts of {file} against the sweep's:\n{both}"
     );
 
-    // Allowable slope per sector: the same table, cell for cell.
-    let cols = ["azimuth sector", "samples", "stable", "allowable slope"];
+    // Allowable slope per sector and its interval: the same table, cell for cell.
+    let cols = [
+        "azimuth sector",
+        "samples",
+        "stable",
+        "allowable slope",
+        "95 % interval",
+    ];
     let example_sectors = columns(&table(&example, "## Allowable slope"), &cols);
     let report_sectors = columns(&table(&report.stdout, "## Allowable slope"), &cols);
     assert_eq!(example_sectors.len(), 8, "sectors of {file}:\n{both}");
@@ -451,4 +457,32 @@ fn python_readers_hold_the_printed_values() {
             &format!("the sweep file of `touchdown sweep {}`", args.join(" ")),
         );
     }
+}
+
+#[test]
+fn stability_example_without_matplotlib_says_what_to_install() {
+    if !python_readers_available("stability_example_without_matplotlib_says_what_to_install") {
+        return;
+    }
+    let dir = TempDir::new("stability-no-matplotlib");
+    sweep(&dir, &["--samples", "200", "--out", "s.arrow"]);
+    // A matplotlib that cannot be imported, first on the path.
+    std::fs::create_dir(dir.join("hide")).unwrap();
+    std::fs::create_dir(dir.join("hide/matplotlib")).unwrap();
+    dir.write(
+        "hide/matplotlib/__init__.py",
+        "raise ImportError(\"No module named 'matplotlib'\")\n",
+    );
+    let o = Command::new(python())
+        .arg(example_script())
+        .args(["s.arrow", "--png", "map.png"])
+        .env("PYTHONPATH", dir.join("hide"))
+        .current_dir(dir.path())
+        .output()
+        .expect("run the example");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("pip install matplotlib"), "{stderr}");
+    assert!(!stderr.contains("Traceback"), "{stderr}");
+    assert!(!dir.join("map.png").exists());
 }

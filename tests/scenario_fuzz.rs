@@ -108,7 +108,8 @@ proptest! {
     }
 
     /// One value of the default scenario replaced: accepted, or refused naming its key
-    /// (or the table it belongs to, for a check across the table's keys).
+    /// (or the table it belongs to, for a check across the table's keys, or naming it in
+    /// the reason, for a check across tables such as "the run reaches the surface").
     #[test]
     fn a_bad_value_is_refused_naming_its_key(
         path in prop::sample::select(leaf_paths()),
@@ -120,7 +121,8 @@ proptest! {
             let key = named_key(&e);
             prop_assert!(
                 key.is_some_and(|k| dotted.starts_with(k) || k.starts_with(&dotted)
-                    || path.len() > 1 && k.starts_with(&path[..path.len() - 1].join("."))),
+                    || path.len() > 1 && k.starts_with(&path[..path.len() - 1].join(".")))
+                    || e.to_string().contains(&format!("{} ", path[..path.len().min(2)].join("."))),
                 "`{dotted}` = {value}: refused with {e}"
             );
         }

@@ -151,12 +151,12 @@ fn sweep(dir: &TempDir, args: &[&str]) -> (Banner, Summary) {
 // The sweep file as the Rust readers see it.
 
 /// A sweep file read whole, Arrow IPC or Parquet.
-struct SweepFile {
+pub(crate) struct SweepFile {
     schema: SchemaRef,
     batches: Vec<RecordBatch>,
 }
 
-fn read_sweep(path: &Path) -> SweepFile {
+pub(crate) fn read_sweep(path: &Path) -> SweepFile {
     let bytes = read_bytes(path);
     let open = || {
         std::fs::File::open(path).unwrap_or_else(|e| panic!("cannot open {}: {e}", path.display()))
@@ -189,11 +189,11 @@ fn read_sweep(path: &Path) -> SweepFile {
 }
 
 impl SweepFile {
-    fn rows(&self) -> usize {
+    pub(crate) fn rows(&self) -> usize {
         self.batches.iter().map(RecordBatch::num_rows).sum()
     }
 
-    fn meta(&self, key: &str) -> Option<&str> {
+    pub(crate) fn meta(&self, key: &str) -> Option<&str> {
         self.schema.metadata().get(key).map(String::as_str)
     }
 
@@ -216,24 +216,24 @@ impl SweepFile {
         v
     }
 
-    fn f64s(&self, name: &str) -> Vec<f64> {
+    pub(crate) fn f64s(&self, name: &str) -> Vec<f64> {
         self.values(name, |a: &Float64Array, i| a.value(i))
     }
 
-    fn u64s(&self, name: &str) -> Vec<u64> {
+    pub(crate) fn u64s(&self, name: &str) -> Vec<u64> {
         self.values(name, |a: &UInt64Array, i| a.value(i))
     }
 
-    fn u32s(&self, name: &str) -> Vec<u32> {
+    pub(crate) fn u32s(&self, name: &str) -> Vec<u32> {
         self.values(name, |a: &UInt32Array, i| a.value(i))
     }
 
-    fn strings(&self, name: &str) -> Vec<String> {
+    pub(crate) fn strings(&self, name: &str) -> Vec<String> {
         self.values(name, |a: &StringArray, i| a.value(i).to_string())
     }
 
     /// Outcome -> count in the file, zeros included.
-    fn outcome_counts(&self) -> BTreeMap<String, u64> {
+    pub(crate) fn outcome_counts(&self) -> BTreeMap<String, u64> {
         let mut counts: BTreeMap<String, u64> = Outcome::ALL
             .iter()
             .map(|o| (o.name().to_string(), 0))
@@ -266,7 +266,9 @@ fn check_sweep_file(path: &Path, summary: &Summary, seed: u64, scenario: &str) -
     let seed = seed.to_string();
     assert_eq!(file.meta("touchdown.samples"), Some(n.as_str()));
     assert_eq!(file.meta("touchdown.seed"), Some(seed.as_str()));
-    assert_eq!(file.meta("touchdown.scenario"), Some(scenario));
+    // The scenario that ran, seed included.
+    let ran = touchdown::scenario::with_seed(scenario, seed.parse().unwrap());
+    assert_eq!(file.meta("touchdown.scenario"), Some(ran.as_str()));
     assert_eq!(file.meta("touchdown.kind"), Some("sweep"));
     let engine = file.meta("touchdown.engine").unwrap_or_default();
     assert!(
@@ -436,9 +438,10 @@ fn trace_terrain(run: &Run) -> Option<(u32, String, String)> {
     Some(parse().unwrap_or_else(|| panic!("cannot read the terrain line {line:?} of {run}")))
 }
 
-/// Checks that the sweep rows of `indices` hold the inputs and the outcome of
-/// `touchdown trace --sample i` of the same scenario and seed.
-fn check_rows_against_traces(dir: &TempDir, scenario: &str, seed: &str, file: &SweepFile) {
+/// Checks that sweep rows hold the inputs and the outcome of `touchdown trace --sample i`
+/// with the flags `source` (`--scenario F --seed S`, or `--sweep FILE`), and that the trace
+/// stores the scenario text the sweep stored (seed included).
+fn check_rows_against_traces(dir: &TempDir, source: &[&str], seed: &str, file: &SweepFile) {
     let rows = file.rows() as u64;
     let outcomes = file.strings("outcome");
     // The first samples, the last one, and the first of every outcome that occurs.
@@ -461,22 +464,13 @@ fn check_rows_against_traces(dir: &TempDir, scenario: &str, seed: &str, file: &S
         let k = i as usize;
         let index = i.to_string();
         let out = format!("trace-{i}.arrow");
-        let run = touchdown(
-            dir.path(),
-            &[
-                "trace",
-                "--scenario",
-                scenario,
-                "--seed",
-                seed,
-                "--sample",
-                &index,
-                "--every",
-                "1e9",
-                "--out",
-                &out,
-            ],
-        );
+        let args = [
+            &["trace"],
+            source,
+            &["--sample", &index, "--every", "1e9", "--out", &out],
+        ]
+        .concat();
+        let run = touchdown(dir.path(), &args);
         run.assert_ok();
         let trace = read_sweep(&dir.join(&out)); // an Arrow IPC file too
         let meta = |key: &str| {
@@ -509,6 +503,13 @@ fn check_rows_against_traces(dir: &TempDir, scenario: &str, seed: &str, file: &S
                 problems.push(format!("{name}: row {:?}, trace {traced:?}", column[k]));
             }
         }
+        if trace.meta("touchdown.scenario") != file.meta("touchdown.scenario") {
+            problems.push(format!(
+                "scenario text: sweep {:?}, trace {:?}",
+                file.meta("touchdown.scenario"),
+                trace.meta("touchdown.scenario")
+            ));
+        }
         if meta("touchdown.outcome") != outcomes[k] {
             problems.push(format!(
                 "outcome: row (kernel) {}, trace (reference) {}",
@@ -540,7 +541,8 @@ fn check_rows_against_traces(dir: &TempDir, scenario: &str, seed: &str, file: &S
     }
     assert!(
         failures.is_empty(),
-        "rows of the sweep of {scenario} (seed {seed}) differ from their traces:\n\n{}",
+        "rows of the sweep (seed {seed}) differ from their traces `touchdown trace {}`:\n\n{}",
+        source.join(" "),
         failures.join("\n\n")
     );
 }
@@ -568,7 +570,9 @@ fn rows_hold_the_inputs_and_outcomes_of_their_traces() {
             ],
         );
         let file = check_sweep_file(&dir.join(&out), &s, seed.parse().unwrap(), text);
-        check_rows_against_traces(&dir, name, seed, &file);
+        // Traced from the scenario and seed, and from the sweep file alone.
+        check_rows_against_traces(&dir, &["--scenario", name, "--seed", seed], seed, &file);
+        check_rows_against_traces(&dir, &["--sweep", &out], seed, &file);
     }
 }
 
@@ -912,6 +916,78 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
         "bad scenario",
         "[lander]\nmass_kg = -5\n",
         &["`lander.mass_kg` = -5 ", "greater than 0"],
+    ),
+    bad_args(
+        "resume naming the interrupted file",
+        &["--resume", "b2.arrow.interrupted"],
+        &[
+            "--resume takes the output of the sweep",
+            "touchdown sweep --resume b2.arrow",
+        ],
+    ),
+    bad_args(
+        "format contradicting the extension",
+        &["--out", "x.parquet", "--format", "arrow"],
+        &["--format arrow contradicts", "x.parquet", "a parquet file"],
+    ),
+    bad_args(
+        "format contradicting the extension, the other way",
+        &["--out", "x.feather", "--format", "parquet"],
+        &["--format parquet contradicts", "x.feather", "an arrow file"],
+    ),
+    // Set-ups that defeat themselves: refused with the reason, before any work.
+    bad_scenario(
+        "a footpad above the CG",
+        "[lander]\nleg_tips_m = [[0.4, 0.4, 0.1], [0.4, -0.4, -0.4], [-0.4, -0.4, -0.4], \
+         [-0.4, 0.4, -0.4]]\n",
+        &[
+            "`lander.leg_tips_m`",
+            "footpad 0 at [0.4, 0.4, 0.1]",
+            "below the CG",
+        ],
+    ),
+    bad_scenario(
+        "footpads above the CG by a negative height",
+        "[lander]\ncg_height_m = -0.2\n",
+        &["`lander.cg_height_m`"],
+    ),
+    bad_scenario(
+        "three footpads on a line",
+        "[lander]\nleg_tips_m = [[0.4, 0.0, -0.4], [0.0, 0.0, -0.4], [-0.4, 0.0, -0.4]]\n",
+        &["`lander.leg_tips_m`", "not on one line", "no area"],
+    ),
+    bad_scenario(
+        "the CG beside the footpads",
+        "[lander]\nleg_tips_m = [[0.4, 0.1, -0.4], [0.8, 0.1, -0.4], [0.6, 0.5, -0.4]]\n",
+        &[
+            "`lander.leg_tips_m`",
+            "CG",
+            "inside of their support polygon",
+        ],
+    ),
+    bad_scenario(
+        "struts pointing up with dampers on",
+        "[damper]\nenabled = true\nstrut_axis = [0.0, 0.0, 1.0]\n",
+        &["`damper.strut_axis` = [0, 0, 1]", "never stroke"],
+    ),
+    bad_scenario(
+        "a hold time longer than the run",
+        "[simulation]\nt_max_s = 1.5\n",
+        &["`outcome.hold_time_s` = 2 s", "simulation.t_max_s = 1.5 s"],
+    ),
+    bad_scenario(
+        "no gravity",
+        "gravity_m_s2 = 0.0\n",
+        &["`gravity_m_s2` = 0 ", "greater than 0"],
+    ),
+    bad_scenario(
+        "a run too short to reach the surface",
+        "[initial]\nclearance_m = 5.0\n\n[simulation]\nt_max_s = 3.0\n",
+        &[
+            "`simulation.t_max_s` = 3 s",
+            "reach the surface",
+            "clearance_m = 5 m",
+        ],
     ),
     BadInput {
         name: "bad scenario with an explicit output path and format",

@@ -13,5 +13,6 @@ mod report;
 mod scenario_fuzz;
 mod scenarios;
 mod shards;
+mod studies;
 mod sweep_cli;
 mod validation;

@@ -162,8 +162,23 @@ def with_sector(df):
     )
 
 
+Z95 = 1.959963984540054  # the 97.5 % standard normal quantile
+
+
+def wilson(k, n):
+    """The 95 % Wilson interval of k successes in n trials (polars expressions), computed in
+    the order of src/report.rs so that both take the same decisions at 99 %."""
+    p = k / n
+    centre = (p + Z95 * Z95 / (2.0 * n)) / (1.0 + Z95 * Z95 / n)
+    half = Z95 / (1.0 + Z95 * Z95 / n) * (p * (1.0 - p) / n + Z95 * Z95 / (4.0 * n * n)).sqrt()
+    lo = pl.when(k == 0).then(0.0).otherwise(pl.max_horizontal(centre - half, 0.0))
+    hi = pl.when(k == n).then(1.0).otherwise(pl.min_horizontal(centre + half, 1.0))
+    return lo, hi
+
+
 def sector_table(df):
-    """Per sector: samples, stable share and allowable slope (null when no slope is)."""
+    """Per sector: samples, stable share, allowable slope (null when no slope is), and the
+    ends of its 95 % interval (as `touchdown report`)."""
     ranked = df.sort("sector", "slope_deg").with_columns(
         # Within a sector, by increasing slope: samples and stable samples so far...
         n=pl.int_range(1, pl.len() + 1).over("sector"),
@@ -171,24 +186,36 @@ def sector_table(df):
         # ...counted only at the last of equal slopes (all samples at or below s).
         last_of_slope=(pl.col("slope_deg") != pl.col("slope_deg").shift(-1)).fill_null(True).over("sector"),
     )
-    allowable = (
-        ranked.filter(
-            pl.col("last_of_slope")
-            & (pl.col("n") >= MIN_SAMPLES)
-            & (pl.col("n_stable") >= ALLOWABLE_STABLE * pl.col("n"))
-        )
-        .group_by("sector")
-        .agg(allowable_slope_deg=pl.col("slope_deg").max())
+    resolved = ranked.filter(pl.col("last_of_slope") & (pl.col("n") >= MIN_SAMPLES))
+    lo, hi = wilson(pl.col("n_stable").cast(pl.Float64), pl.col("n").cast(pl.Float64))
+    slope_where = lambda cond: pl.col("slope_deg").filter(cond).max()  # noqa: E731
+    ends = resolved.group_by("sector").agg(
+        first_resolved_deg=pl.col("slope_deg").min(),
+        allowable_slope_deg=slope_where(pl.col("n_stable") >= ALLOWABLE_STABLE * pl.col("n")),
+        low_deg=slope_where(lo >= ALLOWABLE_STABLE),
+        high_deg=slope_where(hi >= ALLOWABLE_STABLE),
     )
     counts = df.group_by("sector").agg(samples=pl.len(), stable_share=pl.col("stable").mean())
     # Every sector, the empty ones too.
     return (
         pl.DataFrame({"sector": range(SECTORS)}, schema={"sector": pl.Int64})
         .join(counts, on="sector", how="left")
-        .join(allowable, on="sector", how="left")
+        .join(ends, on="sector", how="left")
         .with_columns(pl.col("samples").fill_null(0), pl.col("stable_share").fill_null(0.0))
         .sort("sector")
     )
+
+
+def allowable_cells(n, allowable, low, high, first_resolved):
+    """The report's allowable-slope and interval cells of one sector."""
+    if n < MIN_SAMPLES:
+        return f"too few samples ({n})", "–"
+    if allowable is None:
+        below = high if high is not None else first_resolved
+        return f"no slope with ≥ {100 * ALLOWABLE_STABLE:.0f} % stable", f"0.0–{below:.1f} deg"
+    low = 0.0 if low is None else low
+    high = allowable if high is None else high
+    return f"{allowable:.1f} deg", f"{low:.1f}–{high:.1f} deg"
 
 
 # ---------------------------------------------------------------------------------------
@@ -216,18 +243,22 @@ def print_tables(path, df, schema, meta, sectors, polygon, h):
         f"\n## Allowable slope\n\nPer {SECTOR_DEG:.0f}-degree sector of downhill azimuth relative to "
         f"the lander: the largest slope at or below which at least {100 * ALLOWABLE_STABLE:.0f} % "
         f"of the samples are stable (only slopes with at least {MIN_SAMPLES} samples at or below "
-        f"them count), and the static tipping limit over the sector (CG {h:.3f} m above the "
-        f"footpads).\n"
+        f"them count), its 95 % interval, and the static tipping limit over the sector (CG "
+        f"{h:.3f} m above the footpads).\n"
     )
-    print("| azimuth sector | samples | stable | allowable slope | static limit |\n|---|---:|---:|---:|---:|")
-    for k, n, share, allowable in sectors.select(
-        "sector", "samples", "stable_share", "allowable_slope_deg"
+    print(
+        "| azimuth sector | samples | stable | allowable slope | 95 % interval | static limit |\n"
+        "|---|---:|---:|---:|---:|---:|"
+    )
+    for k, n, share, allowable, low, high, first in sectors.select(
+        "sector", "samples", "stable_share", "allowable_slope_deg", "low_deg", "high_deg",
+        "first_resolved_deg",
     ).iter_rows():
         lo, hi = k * SECTOR_DEG, (k + 1) * SECTOR_DEG
         limits = [static_limit_deg(polygon, h, lo + i * SECTOR_DEG / 90) for i in range(91)]
-        shown = "none" if allowable is None else f"{allowable:.1f} deg"
+        shown, interval = allowable_cells(n, allowable, low, high, first)
         static = "none" if math.isnan(limits[0]) else f"{min(limits):.1f}–{max(limits):.1f} deg"
-        print(f"| {lo:.0f}–{hi:.0f} deg | {n} | {100 * share:.1f} % | {shown} | {static} |")
+        print(f"| {lo:.0f}–{hi:.0f} deg | {n} | {100 * share:.1f} % | {shown} | {interval} | {static} |")
 
 
 def draw_map(png, path, df, schema, meta, sectors, polygon, h, max_points):
@@ -280,6 +311,17 @@ def main(argv=None):
     p.add_argument("--png", help="draw the stability map to this PNG file")
     p.add_argument("--max-points", type=int, default=200_000, help="most points to plot (default 200000)")
     a = p.parse_args(argv)
+    if a.png:
+        # Before any work: say what to install rather than fail with a traceback at the end.
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            print(
+                "stability.py: --png draws with matplotlib, which this Python lacks: "
+                "pip install matplotlib (or run without --png for the tables alone)",
+                file=sys.stderr,
+            )
+            return 2
 
     df, schema, meta = read_sweep(a.sweep)
     if df.height == 0:

@@ -38,6 +38,14 @@ impl Interrupted {
     pub fn read(out: &Path) -> anyhow::Result<Interrupted> {
         let path = interrupted_path(out);
         if !path.exists() {
+            let name = out.file_name().unwrap_or_default().to_string_lossy();
+            if let Some(stem) = name.strip_suffix(".interrupted") {
+                bail!(
+                    "--resume takes the output of the sweep, not its interrupted file: \
+                     touchdown sweep --resume {}",
+                    out.with_file_name(stem).display()
+                );
+            }
             if out.exists() {
                 bail!(
                     "nothing to resume: {} is complete (no {} beside it)",

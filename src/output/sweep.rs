@@ -26,6 +26,17 @@ pub enum Format {
     Parquet,
 }
 
+impl Format {
+    /// The name `--format` takes.
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Format::Arrow => "arrow",
+            Format::Parquet => "parquet",
+        }
+    }
+}
+
 /// Provenance stored in the schema metadata.
 pub struct SweepInfo<'a> {
     pub scenario_toml: &'a str,

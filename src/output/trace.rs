@@ -128,8 +128,9 @@ pub struct TraceInfo<'a> {
     pub summary: &'a Summary,
 }
 
-/// Runs `sample` with the reference model and writes every `every`-th step to `path`.
-/// Returns the number of rows written.
+/// Runs `sample` with the reference model and writes every `every`-th step to `path`, the
+/// state at the start of each, and last the state at the decision. Returns the number of
+/// rows written.
 pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> anyhow::Result<u64> {
     let cols = columns(model.legs.len());
     let fields: Vec<_> = cols
@@ -183,7 +184,7 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
         writer.write(&RecordBatch::try_new(schema.clone(), arrays)?)?;
         Ok(())
     };
-    crate::reference::run(model, info.sample, |report| {
+    let (_, end) = crate::reference::run::run_to_end(model, info.sample, |report| {
         if failure.is_some() {
             return;
         }
@@ -204,6 +205,12 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     if let Some(e) = failure {
         return Err(e);
     }
+    // The last row is the state at the decision, whatever `every`.
+    row(model, &end, &mut buf);
+    for (c, v) in data.iter_mut().zip(&buf) {
+        c.push(*v);
+    }
+    rows += 1;
     if !data[0].is_empty() {
         flush(&mut data, &mut writer)?;
     }

@@ -214,6 +214,26 @@ struct Line {
     points: Vec<(f64, f64)>,
 }
 
+impl Line {
+    /// The points in pieces, cut where an angle wraps around (a jump of more than 180 deg
+    /// between neighbours, as yaw makes at +-180 deg), so that no vertical line joins them.
+    fn pieces(&self, wraps: bool) -> Vec<&[(f64, f64)]> {
+        if !wraps {
+            return vec![&self.points];
+        }
+        let mut pieces = Vec::new();
+        let mut start = 0;
+        for i in 1..self.points.len() {
+            if (self.points[i].1 - self.points[i - 1].1).abs() > 180.0 {
+                pieces.push(&self.points[start..i]);
+                start = i;
+            }
+        }
+        pieces.push(&self.points[start..]);
+        pieces
+    }
+}
+
 /// The range of `values` (finite ones), widened by `pad` of its length on each side; a
 /// constant (or empty) one becomes its value plus or minus 1.
 fn span(values: impl Iterator<Item = f64>, pad: f64) -> std::ops::Range<f64> {
@@ -260,18 +280,23 @@ fn line_panel(
         .light_line_style(RGBColor(238, 238, 238))
         .draw()
         .map_err(drawing)?;
+    // Angles in degrees wrap at +-180: their lines break there.
+    let wraps = y_desc.contains("(deg)");
     for l in lines {
         let colour = l.colour;
-        chart
-            .draw_series(LineSeries::new(
-                l.points.iter().copied(),
-                colour.stroke_width(2),
-            ))
-            .map_err(drawing)?
-            .label(l.label.as_str())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
-            });
+        for (k, piece) in l.pieces(wraps).into_iter().enumerate() {
+            let drawn = chart
+                .draw_series(LineSeries::new(
+                    piece.iter().copied(),
+                    colour.stroke_width(2),
+                ))
+                .map_err(drawing)?;
+            if k == 0 {
+                drawn.label(l.label.as_str()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+                });
+            }
+        }
     }
     legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
@@ -293,4 +318,29 @@ fn legend<'a>(chart: &mut Chart2d<'a, 'a>, position: SeriesLabelPosition) -> any
         .label_font((FONT, 14))
         .draw()
         .map_err(drawing)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn angle_lines_break_where_they_wrap() {
+        let line = Line {
+            label: "yaw".into(),
+            colour: BLACK,
+            points: vec![
+                (0.0, 170.0),
+                (1.0, 179.0),
+                (2.0, -179.0),
+                (3.0, -170.0),
+                (4.0, 175.0),
+            ],
+        };
+        let pieces = line.pieces(true);
+        assert_eq!(pieces.len(), 3);
+        assert_eq!(pieces[0], &[(0.0, 170.0), (1.0, 179.0)][..]);
+        assert_eq!(pieces[2], &[(4.0, 175.0)][..]);
+        assert_eq!(line.pieces(false).len(), 1);
+    }
 }

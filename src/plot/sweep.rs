@@ -124,9 +124,9 @@ pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
     Ok(written)
 }
 
-/// Slope against relative downhill azimuth, a dot per sample coloured by its outcome (in
-/// sample order, so no outcome hides the others), with the static limit and the allowable
-/// slope of each azimuth sector over it.
+/// Slope against relative downhill azimuth, a dot per sample coloured by its outcome (the
+/// rarest outcomes drawn last, so that they show on a dense map), with the static limit and
+/// the allowable slope of each azimuth sector over it.
 fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Result<()> {
     let top = s
         .slope
@@ -161,20 +161,30 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
         20_001..=300_000 => 1,
         _ => 0,
     };
-    let dots = s
-        .relative_azimuth
-        .iter()
-        .zip(&s.slope)
-        .zip(&s.outcome)
-        .map(|((a, sl), o)| ((*a, *sl), OUTCOME_COLOURS[usize::from(*o)]));
-    if radius == 0 {
-        chart
-            .draw_series(dots.map(|(p, c)| Pixel::new(p, c)))
-            .map_err(drawing)?;
-    } else {
-        chart
-            .draw_series(dots.map(|(p, c)| Circle::new(p, radius, c.filled())))
-            .map_err(drawing)?;
+    // The commonest outcome first, the rarest last: on a dense map the few stable dots
+    // among many tipped ones stay visible. Within an outcome, in sample order.
+    let mut counts = [0usize; Outcome::ALL.len()];
+    s.outcome.iter().for_each(|o| counts[usize::from(*o)] += 1);
+    let mut order: Vec<usize> = (0..counts.len()).collect();
+    order.sort_by_key(|k| std::cmp::Reverse(counts[*k]));
+    for k in order {
+        let c = OUTCOME_COLOURS[k];
+        let dots = s
+            .relative_azimuth
+            .iter()
+            .zip(&s.slope)
+            .zip(&s.outcome)
+            .filter(|(_, o)| usize::from(**o) == k)
+            .map(|((a, sl), _)| (*a, *sl));
+        if radius == 0 {
+            chart
+                .draw_series(dots.map(|p| Pixel::new(p, c)))
+                .map_err(drawing)?;
+        } else {
+            chart
+                .draw_series(dots.map(|p| Circle::new(p, radius, c.filled())))
+                .map_err(drawing)?;
+        }
     }
     // The legend: one entry per outcome present, with its count.
     for (k, outcome) in Outcome::ALL.iter().enumerate() {
@@ -197,7 +207,7 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
     }
     let mut any = false;
     for (k, samples) in per_sector.iter_mut().enumerate() {
-        if let Some(allowable) = allowable_slope(samples) {
+        if let Some(allowable) = allowable_slope(samples).slope_deg() {
             let x0 = k as f64 * SECTOR_DEG;
             chart
                 .draw_series(DashedLineSeries::new(
@@ -243,21 +253,20 @@ fn bin_width(span: f64) -> f64 {
         .unwrap_or(10.0 * decade)
 }
 
-/// Share of tipped and of stable samples per slope bin, with 95 % Wilson intervals, and
-/// the range of the static limit over azimuth.
+/// The share of each outcome per slope bin, with 95 % Wilson intervals, and the range of
+/// the static limit over azimuth.
 fn tipped_by_slope(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Result<()> {
     let range = span(s.slope.iter().copied(), 0.0);
     let width = bin_width(range.end - range.start);
     let first = (range.start / width).floor() * width;
     let bins = (((range.end - first) / width).floor() as usize + 1).max(1);
     let mut n = vec![0u64; bins];
-    let mut tipped = vec![0u64; bins];
-    let mut stable = vec![0u64; bins];
+    // Samples per outcome and bin.
+    let mut by_outcome = vec![vec![0u64; bins]; Outcome::ALL.len()];
     for (sl, o) in s.slope.iter().zip(&s.outcome) {
         let b = (((sl - first) / width).floor().max(0.0) as usize).min(bins - 1);
         n[b] += 1;
-        tipped[b] += u64::from(Outcome::ALL[usize::from(*o)] == Outcome::Tipped);
-        stable[b] += u64::from(Outcome::ALL[usize::from(*o)] == Outcome::Stable);
+        by_outcome[usize::from(*o)][b] += 1;
     }
     let (lim_lo, lim_hi) = limit.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
         (lo.min(p.1), hi.max(p.1))
@@ -266,10 +275,7 @@ fn tipped_by_slope(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::
         (first + bins as f64 * width).max(if limit.is_empty() { 0.0 } else { lim_hi + 1.0 });
     let mut chart = ChartBuilder::on(root)
         .caption(
-            format!(
-                "Tipped and stable share per {width} deg slope bin: {}",
-                s.about
-            ),
+            format!("Outcome shares per {width} deg slope bin: {}", s.about),
             (FONT, 20),
         )
         .margin(12)
@@ -287,12 +293,19 @@ fn tipped_by_slope(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::
         .light_line_style(RGBColor(238, 238, 238))
         .draw()
         .map_err(drawing)?;
-    let tipped_colour = OUTCOME_COLOURS[1];
-    let stable_colour = OUTCOME_COLOURS[0];
-    for (counts, colour, label, shift) in [
-        (&tipped, tipped_colour, "tipped", -0.08),
-        (&stable, stable_colour, "stable", 0.08),
-    ] {
+    // Every outcome that occurs, so that the shares of a bin add up to 1 (where the samples
+    // neither tipped nor stood went: sliding, mostly).
+    let present: Vec<usize> = (0..Outcome::ALL.len())
+        .filter(|k| by_outcome[*k].iter().any(|c| *c > 0))
+        .collect();
+    for (i, k) in present.iter().enumerate() {
+        let (counts, colour, label) = (
+            &by_outcome[*k],
+            OUTCOME_COLOURS[*k],
+            Outcome::ALL[*k].name(),
+        );
+        // Error bars side by side within the bin.
+        let shift = 0.16 * (i as f64 - 0.5 * (present.len() as f64 - 1.0));
         let points: Vec<(f64, f64, f64, f64)> = (0..bins)
             .filter(|b| n[*b] > 0)
             .map(|b| {

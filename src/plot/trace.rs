@@ -44,8 +44,9 @@ impl Trace {
             .and_then(|v| v.parse::<f64>().ok())
             .map_or("?".to_string(), |v| format!("{v:.3}"));
         let about = format!(
-            "sample {}: {} at {decided} s",
+            "sample {} of seed {}: {} at {decided} s",
             meta("touchdown.sample"),
+            meta("touchdown.seed"),
             meta("touchdown.outcome"),
         );
         Ok(Trace {
@@ -285,6 +286,14 @@ pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
     Ok(written)
 }
 
+/// Colours of the axis names X_I, Y_I, Z_I of the 3D path (red, green, blue as in most 3D
+/// tools; darker than any series colour, and none of them).
+const AXIS_COLOURS: [RGBColor; 3] = [
+    RGBColor(170, 20, 20),
+    RGBColor(20, 120, 20),
+    RGBColor(20, 20, 170),
+];
+
 /// The CG and footpad paths in 3D over a patch of the slope plane. Equal scales on all
 /// axes, so that the path's shape is true.
 fn path_3d(root: &Area<'_>, tr: &Trace) -> anyhow::Result<()> {
@@ -407,14 +416,20 @@ fn path_3d(root: &Area<'_>, tr: &Trace) -> anyhow::Result<()> {
                 + Text::new(what, (8, -18), (FONT, 15))])
             .map_err(drawing)?;
     }
-    // Axis names at the positive ends of the axes.
-    for (text, at) in [
-        ("X_I (m)", (cx + half, cz - half, cy - half)),
-        ("Y_I (m)", (cx - half, cz - half, cy + half)),
-        ("Z_I, up (m)", (cx - half, cz + half, cy - half)),
-    ] {
+    // Axis names beside the middle of the edges that carry their tick labels (seen from
+    // this side, X_I ticks run along the front-left edge at Y_I max, Y_I ticks along the
+    // front-right edge at X_I max), in the colours of AXIS_COLOURS.
+    for ((text, at, offset), colour) in [
+        ("X_I (m)", (cx, cz - half, cy + half), (-110, 40)),
+        ("Y_I (m)", (cx + half, cz - half, cy), (50, 40)),
+        ("Z_I, up (m)", (cx - half, cz + half, cy + half), (-40, -30)),
+    ]
+    .into_iter()
+    .zip(AXIS_COLOURS)
+    {
         chart
-            .draw_series([Text::new(text, at, (FONT, 15))])
+            .draw_series([EmptyElement::at(at)
+                + Text::new(text, offset, (FONT, 15).into_font().color(&colour))])
             .map_err(drawing)?;
     }
     chart

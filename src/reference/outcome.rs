@@ -257,6 +257,9 @@ impl Tracker {
     #[must_use]
     pub fn finish(&self, surface: &Surface, outcome: Outcome, last: &State) -> Summary {
         let cos_tilt = (last.body.attitude * DVec3::Z).dot(surface.normal);
+        // The largest tilt over the states of every step and the final one, so that it is
+        // never below the final tilt.
+        let min_cos_tilt = self.min_cos_tilt.min(cos_tilt);
         let moved = last.body.position_m - self.start_m;
         let along = moved - surface.normal * surface.normal.dot(moved);
         let finite_or_zero = |x: f64| if x.is_finite() { x } else { 0.0 };
@@ -265,7 +268,7 @@ impl Tracker {
             decided_s: last.t_s,
             steps: self.steps,
             final_tilt_deg: finite_or_zero(libm::acos(cos_tilt.clamp(-1.0, 1.0)).to_degrees()),
-            max_tilt_deg: libm::acos(self.min_cos_tilt.clamp(-1.0, 1.0)).to_degrees(),
+            max_tilt_deg: libm::acos(min_cos_tilt.clamp(-1.0, 1.0)).to_degrees(),
             displacement_m: finite_or_zero(along.length()),
             peak_acceleration_m_s2: finite_or_zero(self.peak_acceleration),
             peak_acceleration_z_body_m_s2: finite_or_zero(self.peak_acceleration_z),

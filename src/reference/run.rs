@@ -72,7 +72,17 @@ pub fn from_euler_zyx(yaw: f64, pitch: f64, roll: f64) -> DQuat {
 }
 
 /// Runs one sample to its outcome, handing every step to `observe` (for traces).
-pub fn run(model: &Model, sample: &Sample, mut observe: impl FnMut(&StepReport)) -> Summary {
+pub fn run(model: &Model, sample: &Sample, observe: impl FnMut(&StepReport)) -> Summary {
+    run_to_end(model, sample, observe).0
+}
+
+/// `run`, and the report of the state at the decision: the body after the last step, with
+/// the contact forces a next step would start from (a trace's last row).
+pub fn run_to_end(
+    model: &Model,
+    sample: &Sample,
+    mut observe: impl FnMut(&StepReport),
+) -> (Summary, StepReport) {
     let surface = Surface::of(sample);
     let mut state = initial_state(model, &surface, sample);
     let mut tracker = Tracker::new(model, &state);
@@ -82,7 +92,16 @@ pub fn run(model: &Model, sample: &Sample, mut observe: impl FnMut(&StepReport))
         step(model, &surface, &mut state, dt, &mut report);
         observe(&report);
         if let Some(outcome) = tracker.observe(model, &surface, &report, &state) {
-            return tracker.finish(&surface, outcome, &state);
+            let summary = tracker.finish(&surface, outcome, &state);
+            // One more step of a copy, for what it computed at its start (no step taken
+            // from there: length 0, and the strokes of the state itself).
+            let mut end = state.clone();
+            step(model, &surface, &mut end, model.step_s, &mut report);
+            report.dt_s = 0.0;
+            for (leg, at) in report.legs.iter_mut().zip(&state.legs) {
+                leg.stroke_m = at.stroke_m;
+            }
+            return (summary, report);
         }
     }
 }

@@ -444,6 +444,46 @@ impl Default for Scenario {
     }
 }
 
+/// The scenario text `text` with its top-level `seed` set to `seed` (replaced where the text
+/// has one, added before its first key where not), so that a file stores the scenario that
+/// ran, seed included. Comments and layout stay. The text must read as a scenario.
+#[must_use]
+pub fn with_seed(text: &str, seed: u64) -> String {
+    if Scenario::from_toml(text).is_ok_and(|s| s.seed == seed) {
+        return text.to_string();
+    }
+    let lines: Vec<&str> = text.lines().collect();
+    let top_level = lines
+        .iter()
+        .position(|l| l.trim_start().starts_with('['))
+        .unwrap_or(lines.len());
+    let is_seed = |l: &str| {
+        l.trim_start()
+            .strip_prefix("seed")
+            .is_some_and(|rest| rest.trim_start().starts_with('='))
+    };
+    let line = format!("seed = {seed}");
+    let mut out: Vec<String> = lines.iter().map(ToString::to_string).collect();
+    match lines[..top_level].iter().position(|l| is_seed(l)) {
+        Some(i) => out[i] = line,
+        None => {
+            let first_key = lines
+                .iter()
+                .position(|l| {
+                    let t = l.trim();
+                    !t.is_empty() && !t.starts_with('#')
+                })
+                .unwrap_or(lines.len());
+            out.insert(first_key, line);
+        }
+    }
+    let mut edited = out.join("\n");
+    if text.ends_with('\n') {
+        edited.push('\n');
+    }
+    edited
+}
+
 impl Scenario {
     /// Reads a scenario file.
     pub fn from_file(path: &std::path::Path) -> Result<Scenario, ScenarioError> {
@@ -485,6 +525,7 @@ impl Scenario {
             outcome,
         };
         s.check_leg_counts()?;
+        s.check_can_land()?;
         Ok(s)
     }
 
@@ -495,6 +536,117 @@ impl Scenario {
             Geometry::Regular { legs, .. } => *legs,
             Geometry::Tips(t) => t.len(),
         }
+    }
+
+    /// Refuses set-ups that defeat themselves: a lander that cannot stand on its legs, dampers
+    /// that can never stroke, a hold time no run can reach, no gravity, or a run too short
+    /// for the lander to reach the surface.
+    fn check_can_land(&self) -> Result<(), ScenarioError> {
+        let invalid = |key: &str, value: String, allowed: String| ScenarioError::Invalid {
+            key: key.to_string(),
+            value,
+            allowed,
+        };
+        let show = |v: [f64; 3]| format!("[{}, {}, {}]", v[0], v[1], v[2]);
+        let tips = self.lander.tips_m();
+        let tips_key = match self.lander.geometry {
+            Geometry::Regular { .. } => "lander.cg_height_m",
+            Geometry::Tips(_) => "lander.leg_tips_m",
+        };
+        if let Some((k, t)) = tips.iter().enumerate().find(|(_, t)| t[2] >= 0.0) {
+            return Err(invalid(
+                tips_key,
+                format!("footpad {k} at {}", show(*t)),
+                "every footpad below the CG (z < 0 in B, the CG at the origin): a lander \
+                 cannot stand on footpads at or above its CG"
+                    .into(),
+            ));
+        }
+        let hull = crate::stability::support_polygon(&tips);
+        let area: f64 = (0..hull.len())
+            .map(|i| {
+                let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
+                0.5 * (a[0] * b[1] - a[1] * b[0])
+            })
+            .sum();
+        let size = tips.iter().map(|t| t[0].hypot(t[1])).fold(0.0, f64::max);
+        if hull.len() < 3 || area <= 1e-9 * size * size {
+            return Err(invalid(
+                tips_key,
+                format!("{} footpads", tips.len()),
+                "at least three footpads not on one line (seen along Z_B): otherwise the \
+                 support polygon has no area and the lander cannot stand"
+                    .into(),
+            ));
+        }
+        if crate::stability::static_limit_deg(&tips, 0.0).is_none() {
+            return Err(invalid(
+                tips_key,
+                format!("{} footpads", tips.len()),
+                "footpads around the CG: the CG (the origin of B) must be above the inside of \
+                 their support polygon, or the lander falls over even on level ground"
+                    .into(),
+            ));
+        }
+        if self.damper.enabled {
+            let axes: Vec<[f64; 3]> = match &self.damper.strut_axes {
+                StrutAxes::All(a) => vec![*a],
+                StrutAxes::PerLeg(a) => a.clone(),
+            };
+            let limit = -kernels::honeycomb::MIN_STRUT_NORMAL;
+            if let Some(a) = axes.iter().find(|a| a[2] >= limit) {
+                return Err(invalid(
+                    "damper.strut_axis",
+                    show(*a),
+                    format!(
+                        "struts that point down, from the hip to the footpad (Z component \
+                         below {limit} in B): along this one the load of a lander standing on \
+                         its legs never compresses the cartridge, so the dampers would never \
+                         stroke"
+                    ),
+                ));
+            }
+        }
+        if self.outcome.hold_time_s > self.simulation.t_max_s {
+            return Err(invalid(
+                "outcome.hold_time_s",
+                format!("{} s", self.outcome.hold_time_s),
+                format!(
+                    "at most simulation.t_max_s = {} s: no lander can be held at rest longer \
+                     than the run lasts, so none could be stable",
+                    self.simulation.t_max_s
+                ),
+            ));
+        }
+        if self.gravity_m_s2 <= 0.0 {
+            return Err(invalid(
+                "gravity_m_s2",
+                self.gravity_m_s2.to_string(),
+                "a gravity greater than 0: without it no lander comes to rest on its legs or \
+                 tips over (the default is 0.0168 m/s^2)"
+                    .into(),
+            ));
+        }
+        // The nominal touchdown (the highest release, no velocity error) must reach the
+        // surface from its starting gap before t_max: else (nearly) no sample ever touches.
+        let height = self.inputs.release_height_m.support().1;
+        let v = (2.0 * self.gravity_m_s2 * height).sqrt();
+        let gap = self.initial.clearance_m;
+        let reach_s = 2.0 * gap / (v + (v * v + 2.0 * self.gravity_m_s2 * gap).sqrt());
+        if reach_s > self.simulation.t_max_s {
+            return Err(invalid(
+                "simulation.t_max_s",
+                format!("{} s", self.simulation.t_max_s),
+                format!(
+                    "a run long enough to reach the surface: from initial.clearance_m = {gap} m \
+                     at {v:.4} m/s (released from inputs.release_height_m up to {height} m in \
+                     gravity_m_s2 = {g} m/s^2) the lander needs {reach_s:.3e} s, so no sample \
+                     would ever touch it",
+                    g = self.gravity_m_s2
+                ),
+            ));
+        }
+        Ok(())
     }
 
     fn check_leg_counts(&self) -> Result<(), ScenarioError> {
@@ -976,6 +1128,36 @@ mod tests {
     #[test]
     fn empty_file_is_the_default_scenario() {
         assert_eq!(Scenario::from_toml("").unwrap(), Scenario::default());
+    }
+
+    #[test]
+    fn the_stored_text_carries_the_seed_that_ran() {
+        let with = |text: &str, seed| {
+            let edited = with_seed(text, seed);
+            let s = Scenario::from_toml(&edited).unwrap();
+            let mut expected = Scenario::from_toml(text).unwrap();
+            expected.seed = seed;
+            assert_eq!(s, expected, "{edited}");
+            edited
+        };
+        // Replaced in place, comments kept.
+        let text = "# study\nseed = 1   # the seed\nsamples = 10\n[lander]\nmass_kg = 90.0\n";
+        assert_eq!(
+            with(text, 7),
+            "# study\nseed = 7\nsamples = 10\n[lander]\nmass_kg = 90.0\n"
+        );
+        // Added before the first key (a table header here), after the opening comments.
+        let text = "# study\n\n[lander]\nmass_kg = 90.0\n";
+        assert_eq!(
+            with(text, 7),
+            "# study\n\nseed = 7\n[lander]\nmass_kg = 90.0\n"
+        );
+        // A `seed` key inside a table is not the scenario's seed; unchanged when it agrees.
+        let text = "[lander]\nmass_kg = 90.0\n";
+        assert!(with(text, 3).starts_with("seed = 3\n"));
+        assert_eq!(with(DEFAULT_TOML, 1), DEFAULT_TOML);
+        let default = with(DEFAULT_TOML, 42);
+        assert!(default.contains("\nseed = 42\n") && !default.contains("\nseed = 1\n"));
     }
 
     #[test]

@@ -60,7 +60,7 @@ class Printed:
         self.peak_accel_z_body = m[1]
         self.max_penetration_mm = summary["max penetration"].removesuffix(" mm")
         self.legs = [line.split() for line in block(lines, "  leg  peak normal force N   stroke mm   absorbed J")]
-        m = re.search(r"^wrote .*: (\d+) rows \(every (\d+) of (\d+) steps\)$", text, re.M)
+        m = re.search(r"^wrote .*: (\d+) rows \(every (\d+) of (\d+) steps, and the state at the decision\)$", text, re.M)
         self.rows, self.every = int(m[1]), int(m[2])
         if int(m[3]) != self.steps:
             raise ValueError(f"the summary says {self.steps} steps, the `wrote` line {m[3]}")
@@ -137,11 +137,17 @@ def check_trace(path, p):
 
     for reader, col, rows in readers(path, "arrow"):
         expect(rows == p.rows, f"{reader}: {rows} rows, printed {p.rows}")
-        if rows == 0:
+        if rows < 2:
+            expect(False, f"{reader}: {rows} rows: not even one step and the decision")
             continue
         t, dt = col("t_s"), col("dt_s")
         expect(t[0] == 0.0, f"{reader}: the first row is at t = {t[0]} s")
-        expect(t[-1] < decided, f"{reader}: the last row is at t = {t[-1]} s, after the decision at {decided} s")
+        # The last row is the state at the decision: at its time, no step taken from it.
+        expect(
+            abs(t[-1] - decided) <= 1e-9 * max(1.0, decided) and dt[-1] == 0.0,
+            f"{reader}: the last row is at t = {t[-1]} s (dt {dt[-1]} s), decided at {decided} s",
+        )
+        expect(t[-2] < decided, f"{reader}: the row before the last is at t = {t[-2]} s, not before the decision at {decided} s")
         # The first row holds the sample's initial body rates (and attitude errors, when they
         # are taken against the vertical, the frame of the trace's Euler angles).
         first = ["rate_x_deg_s", "rate_y_deg_s", "rate_z_deg_s"]
@@ -154,8 +160,8 @@ def check_trace(path, p):
             continue
         # Every step is a row: the rows end at the decision and reach the printed peaks.
         expect(
-            abs(t[-1] + dt[-1] - decided) <= 1e-9 * max(1.0, decided),
-            f"{reader}: the last step ends at {t[-1] + dt[-1]} s, decided at {decided} s",
+            abs(t[-2] + dt[-2] - decided) <= 1e-9 * max(1.0, decided),
+            f"{reader}: the last step ends at {t[-2] + dt[-2]} s, decided at {decided} s",
         )
         for k, leg in enumerate(p.legs):
             expect(int(leg[0]) == k, f"leg line {leg} out of order")

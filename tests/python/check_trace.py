@@ -108,7 +108,9 @@ def check(path, rows, legs):
         failures.append("polars: no column t_s")
 
     if "dt_s" in pl.columns:
-        expect(bool((pl["dt_s"] > 0).all()), "polars: dt_s not positive")
+        # Every row a step, but the last: the state at the decision, from which no step runs.
+        expect(bool((pl["dt_s"].head(-1) > 0).all()), "polars: dt_s not positive before the last row")
+        expect(pl["dt_s"][-1] == 0.0, f"polars: the last row (the decision) has dt_s {pl['dt_s'][-1]}, not 0")
     else:
         failures.append("polars: no column dt_s")
 
