@@ -11,7 +11,8 @@
 #
 # The table (stdout) has per scenario: samples, wall time of the sweep, outcome shares, and
 # the allowable slope of each 45-deg sector of downhill azimuth relative to X_B, in deg
-# ("none": no slope in that sector has >= 99 % stable samples below it). Progress goes to
+# ("none": no slope in that sector has >= 99 % stable samples below it; "few": fewer than
+# 100 samples in the sector; NAME.md has each slope's 95 % interval). Progress goes to
 # stderr.
 set -euo pipefail
 
@@ -75,6 +76,8 @@ for f in "${scenarios[@]}"; do
         }
         section == "## Allowable slope" && /^\| [0-9]/ {
             a = trim($5); sub(/ deg$/, "", a)
+            if (a ~ /^too few/) a = "few"
+            if (a ~ /^no slope/) a = "none"
             slopes = slopes (n++ ? " / " : "") a
         }
         END {
