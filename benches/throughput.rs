@@ -1,5 +1,6 @@
 //! Throughput: the SIMD step kernel and the scalar reference on the same states
-//! (lander-steps/s), and a whole small sweep (samples/s).
+//! (lander-steps/s), and whole small sweeps of the default and the MuJoCo-matched scenario
+//! (samples/s).
 //!
 //! The states are the first second of eight touchdowns of the default sweep: legs in and
 //! out of contact, the expensive part of a sample (free flight takes long steps).
@@ -101,6 +102,23 @@ fn sweep(c: &mut Criterion) {
         b.iter(|| {
             let mut rows = 0;
             touchdown::sweep::run(&scenario, &model, 0..n, 256, |r| {
+                rows += r.len();
+                Ok(())
+            })
+            .unwrap();
+            black_box(rows)
+        });
+    });
+    // The scenario matched to the MuJoCo reference run (../shared/anchors/mujoco/): the
+    // samples/s to compare with MuJoCo's, taken right after it on the same machine.
+    let matched = Scenario::from_toml(include_str!("../scenarios/mujoco-matched.toml")).unwrap();
+    let matched_model = Model::new(&matched);
+    let n_matched = 1000;
+    g.throughput(Throughput::Elements(n_matched));
+    g.bench_function("mujoco_matched_scenario", |b| {
+        b.iter(|| {
+            let mut rows = 0;
+            touchdown::sweep::run(&matched, &matched_model, 0..n_matched, 256, |r| {
                 rows += r.len();
                 Ok(())
             })
