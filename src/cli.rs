@@ -555,6 +555,8 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     let stop = stop_on_signals()?;
     let start = std::time::Instant::now();
     let mut computed = 0u64;
+    // Samples of this run that never touched the surface (all `bouncing`, without a bounce).
+    let mut untouched = 0u64;
     let ran = pool.install(|| {
         crate::sweep::run_until(
             scenario,
@@ -567,6 +569,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
                 for r in &rows {
                     counts[r.summary.outcome as usize] += 1;
                     steps += r.summary.steps;
+                    untouched += u64::from(r.summary.first_contact_s.is_none());
                 }
                 computed += rows.len() as u64;
                 bar.inc(rows.len() as u64);
@@ -632,6 +635,16 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     }
     t.push_str(&format!("wrote {}\n", shown(&plan.out)));
     say(&t, &plan.out);
+    if untouched > 0 {
+        eprintln!(
+            "touchdown: warning: {untouched} of the {computed} samples run never touched the \
+             surface before simulation.t_max_s = {} s (their first_contact_s is empty: they \
+             end bouncing, or tipped if they turned past 90 deg in flight). A release too \
+             high or an upward velocity error for the run's length? See \
+             initial.clearance_m, inputs.release_height_m and inputs.velocity_error_z_m_s",
+            scenario.simulation.t_max_s
+        );
+    }
     Ok(())
 }
 

@@ -24,6 +24,58 @@ fn sweep(dir: &TempDir, args: &[&str]) {
     assert_eq!(run.code, Some(0), "{run}");
 }
 
+#[test]
+fn a_sweep_whose_landers_never_touch_says_so() {
+    // Let go 0.5 m above the surface, rising at 0.2-0.3 m/s in 0.0168 m/s^2: back after
+    // 24-36 s, beyond the 20 s run. The reach check of the scenario (the nominal landing,
+    // no velocity error, touches after 7.7 s) lets it run; the sweep warns afterwards.
+    let dir = TempDir::new("studies-untouched");
+    dir.write(
+        "up.toml",
+        "[inputs]\nrelease_height_m = 0.0\n\
+         velocity_error_z_m_s = { dist = \"uniform\", min = 0.2, max = 0.3 }\n\n\
+         [initial]\nclearance_m = 0.5\n\n[simulation]\nt_max_s = 20.0\n",
+    );
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--scenario",
+            "up.toml",
+            "--samples",
+            "40",
+            "--out",
+            "up.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(
+        run.stderr.contains(
+            "touchdown: warning: 40 of the 40 samples run never touched the surface before \
+             simulation.t_max_s = 20 s"
+        ),
+        "{run}"
+    );
+    let f = read_sweep(&dir.join("up.arrow"));
+    assert!(f.strings("outcome").iter().all(|o| o == "bouncing"));
+    // Landers that all touch: no warning.
+    dir.write("s.toml", SHORT);
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--scenario",
+            "s.toml",
+            "--samples",
+            "40",
+            "--out",
+            "s.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(!run.stderr.contains("warning"), "{run}");
+}
+
 /// The rows of the transition table of a `touchdown compare` report: outcome in A, then
 /// the counts of each outcome in B.
 fn transitions(report: &str) -> BTreeMap<String, Vec<u64>> {
