@@ -112,6 +112,17 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
             .simd_gt(p.diverged_rate_squared)
         | deepest.simd_gt(p.diverged_penetration_m);
 
+    // The rest rule's tests of speed, rate and legs, before its tests of the footpads and
+    // the support polygon.
+    let slow = block
+        .start_velocity_m_s
+        .length_squared()
+        .simd_lt(p.rest_speed_squared)
+        & block
+            .start_rate_rad_s
+            .length_squared()
+            .simd_lt(p.rest_rate_squared)
+        & resting.simd_ge(p.rest_contacts);
     let mut inside = !all_false::<L>();
     let mut tipping = all_false();
     let quasi_static = block
@@ -119,7 +130,15 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
         .length_squared()
         .simd_le(p.quasi_static_force_squared);
     let two_contacts = contacts.simd_eq(L::splat(2.0));
-    if !p.edges.is_empty() {
+    // The edges matter only to a lane that may pivot on two footpads (early tipping) or may
+    // be at rest (CG over the polygon); a block with neither in any lane (in flight, or
+    // moving on more legs) skips them: `tipping` and `inside` would change nothing.
+    let pivot_or_rest = (if p.early_tipping {
+        two_contacts
+    } else {
+        all_false()
+    }) | slow;
+    if !p.edges.is_empty() && pivot_or_rest.to_bitmask() != 0 {
         let n = block.leg_step.len() as f64;
         let centroid =
             block.leg_step.iter().fold(Vec3::ZERO, |c, l| c + l.tip_m) * L::splat(1.0 / n);
@@ -155,17 +174,7 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
             all_false()
         });
 
-    let at_rest = block
-        .start_velocity_m_s
-        .length_squared()
-        .simd_lt(p.rest_speed_squared)
-        & block
-            .start_rate_rad_s
-            .length_squared()
-            .simd_lt(p.rest_rate_squared)
-        & resting.simd_ge(p.rest_contacts)
-        & stuck
-        & inside;
+    let at_rest = slow & stuck & inside;
     // A rest that begins with this step remembers where the footpads stick.
     let starting = at_rest & !in_rest;
     if (starting & active).to_bitmask() != 0 {
