@@ -17,6 +17,8 @@ const Z95: f64 = 1.959_963_984_540_054;
 /// A sweep's seed and its outcomes by sample index.
 struct Outcomes {
     seed: String,
+    /// The engine that wrote it (its sampling rules decide which inputs a seed draws).
+    engine: String,
     /// (sample, outcome code), in file order.
     rows: Vec<(u64, u8)>,
 }
@@ -32,6 +34,10 @@ fn read(path: &Path) -> anyhow::Result<Outcomes> {
         .get("touchdown.seed")
         .cloned()
         .ok_or_else(|| anyhow!("{}: no touchdown.seed", path.display()))?;
+    let engine = meta
+        .get("touchdown.engine")
+        .cloned()
+        .ok_or_else(|| anyhow!("{}: no touchdown.engine", path.display()))?;
     let mut rows = Vec::new();
     for b in batches {
         let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
@@ -55,7 +61,7 @@ fn read(path: &Path) -> anyhow::Result<Outcomes> {
         }
     }
     rows.sort_unstable_by_key(|r| r.0);
-    Ok(Outcomes { seed, rows })
+    Ok(Outcomes { seed, engine, rows })
 }
 
 /// The difference of one outcome's share, B minus A, over `n` paired samples of which
@@ -95,6 +101,17 @@ pub fn compare(a: &Path, b: &Path) -> anyhow::Result<String> {
             x.seed,
             b.display(),
             y.seed
+        );
+    }
+    if x.engine != y.engine {
+        bail!(
+            "{} was written by {} and {} by {}: engines of other versions may draw other \
+             inputs for the same seed, so their samples are not the same landers; run both \
+             with one engine",
+            a.display(),
+            x.engine,
+            b.display(),
+            y.engine
         );
     }
     if x.rows.len() != y.rows.len() || x.rows.iter().zip(&y.rows).any(|(p, q)| p.0 != q.0) {

@@ -191,7 +191,16 @@ fn paired_studies_draw_the_same_other_inputs_and_compare_counts_what_changed() {
             "d.arrow",
         ],
     );
+    with_engine(
+        &dir.join("b.arrow"),
+        &dir.join("e.arrow"),
+        "touchdown 0.2.0",
+    );
     for (other, expect) in [
+        (
+            "e.arrow",
+            "e.arrow by touchdown 0.2.0: engines of other versions",
+        ),
         ("c.arrow", "a.arrow has seed 3 and c.arrow seed 4"),
         ("d.arrow", "do not hold the same sample indices"),
         ("missing.arrow", "cannot read missing.arrow"),
@@ -200,6 +209,24 @@ fn paired_studies_draw_the_same_other_inputs_and_compare_counts_what_changed() {
         assert_eq!(run.code, Some(2), "{run}");
         assert!(run.stderr.contains(expect), "{run}");
     }
+}
+
+/// Copies the Arrow file `from` to `to` with `touchdown.engine` set to `engine`, as if
+/// another version had written it.
+fn with_engine(from: &std::path::Path, to: &std::path::Path, engine: &str) {
+    let reader =
+        arrow_ipc::reader::FileReader::try_new(std::fs::File::open(from).unwrap(), None).unwrap();
+    let mut meta = reader.schema().metadata().clone();
+    meta.insert("touchdown.engine".to_string(), engine.to_string());
+    let schema = std::sync::Arc::new(reader.schema().as_ref().clone().with_metadata(meta));
+    let file = std::fs::File::create(to).unwrap();
+    let mut writer = arrow_ipc::writer::FileWriter::try_new(file, &schema).unwrap();
+    for batch in reader {
+        let columns = batch.unwrap().columns().to_vec();
+        let batch = arrow_array::RecordBatch::try_new(schema.clone(), columns).unwrap();
+        writer.write(&batch).unwrap();
+    }
+    writer.finish().unwrap();
 }
 
 #[test]
