@@ -302,24 +302,12 @@ fn load_scenario(path: Option<&PathBuf>, seed: Option<u64>) -> anyhow::Result<(S
 /// The scenario (with its seed) that a sweep or shard file `path` ran, and its text; checks
 /// that sample `index` is one of its samples.
 fn scenario_of_sweep(path: &Path, index: u64) -> anyhow::Result<(Scenario, String)> {
-    let format = crate::output::read::format_of(path)?;
-    let (schema, _) = crate::output::read::open(path, format)?;
+    let (schema, _) = crate::output::read::open_sweep(path)?;
     let meta = schema.metadata();
     let get = |key: &str| {
-        meta.get(key).ok_or_else(|| {
-            anyhow::anyhow!(
-                "{} is not a sweep file of touchdown (no {key})",
-                path.display()
-            )
-        })
+        meta.get(key)
+            .ok_or_else(|| anyhow::anyhow!("{}: no {key} in its metadata", path.display()))
     };
-    if get("touchdown.kind")? != "sweep" {
-        anyhow::bail!(
-            "{} is a {} file, not a sweep",
-            path.display(),
-            get("touchdown.kind")?
-        );
-    }
     let text = get("touchdown.scenario")?.clone();
     let number = |key: &str| -> anyhow::Result<u64> {
         get(key)?

@@ -4,15 +4,13 @@
 //! difference in outcome shares comes from the samples that changed, not from the noise of
 //! two independent sweeps.
 
-use crate::output::read::{format_of, open};
+use crate::output::read::open_sweep;
 use crate::reference::Outcome;
+use crate::report::Z95;
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, StringArray, UInt64Array};
 use std::fmt::Write as _;
 use std::path::Path;
-
-/// The 97.5 % standard normal quantile.
-const Z95: f64 = 1.959_963_984_540_054;
 
 /// A sweep's seed and its outcomes by sample index.
 struct Outcomes {
@@ -24,12 +22,8 @@ struct Outcomes {
 }
 
 fn read(path: &Path) -> anyhow::Result<Outcomes> {
-    let format = format_of(path)?;
-    let (schema, batches) = open(path, format)?;
+    let (schema, batches) = open_sweep(path)?;
     let meta = schema.metadata();
-    if meta.get("touchdown.kind").map(String::as_str) != Some("sweep") {
-        bail!("{} is not a sweep file of touchdown", path.display());
-    }
     let seed = meta
         .get("touchdown.seed")
         .cloned()

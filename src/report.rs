@@ -3,7 +3,7 @@
 //! lander, and the peak loads. Markdown, so that it reads on a terminal and pastes into a
 //! design note.
 
-use crate::output::read::{format_of, open};
+use crate::output::read::open_sweep;
 use crate::reference::Outcome;
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
@@ -34,13 +34,17 @@ pub const ALLOWABLE_STABLE: f64 = 0.99;
 /// Fewest samples at or below a slope for its stable share to count.
 pub const MIN_SAMPLES: usize = 100;
 
+/// The 97.5 % quantile of the standard normal distribution: 95 % intervals are +-Z95
+/// standard errors.
+pub(crate) const Z95: f64 = 1.959_963_984_540_054;
+
 /// The 95 % Wilson score interval of `k` successes in `n` trials.
 #[must_use]
 pub fn wilson_interval(k: u64, n: u64) -> (f64, f64) {
     if n == 0 {
         return (0.0, 1.0);
     }
-    let z = 1.959_963_984_540_054;
+    let z = Z95;
     let (n, p) = (n as f64, k as f64 / n as f64);
     let centre = (p + z * z / (2.0 * n)) / (1.0 + z * z / n);
     let half = z / (1.0 + z * z / n) * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt();
@@ -180,12 +184,8 @@ struct Load {
 
 /// The report of the sweep file at `path`, as Markdown.
 pub fn report(path: &Path) -> anyhow::Result<String> {
-    let format = format_of(path)?;
-    let (schema, batches) = open(path, format)?;
+    let (schema, batches) = open_sweep(path)?;
     let meta = schema.metadata();
-    if meta.get("touchdown.kind").map(String::as_str) != Some("sweep") {
-        bail!("{} is not a sweep file of touchdown", path.display());
-    }
     let legs = schema
         .fields()
         .iter()

@@ -300,7 +300,7 @@ fn trace_of_a_sweep_file_refuses_what_it_cannot_trace() {
         ),
         (
             &["--sweep", "t.arrow"][..],
-            "t.arrow is a trace file, not a sweep",
+            "t.arrow is not a sweep file of touchdown (it is a trace file)",
         ),
         (
             &["--sweep", "s.arrow", "--seed", "3"][..],

@@ -49,5 +49,19 @@ pub fn open(path: &Path, format: Format) -> anyhow::Result<(SchemaRef, Batches)>
     })
 }
 
+/// A sweep (or shard) file of touchdown at `path`, Arrow or Parquet: its schema with the
+/// metadata and its batches; any other file is refused, saying what it is.
+pub fn open_sweep(path: &Path) -> anyhow::Result<(SchemaRef, Batches)> {
+    let (schema, batches) = open(path, format_of(path)?)?;
+    match schema.metadata().get("touchdown.kind").map(String::as_str) {
+        Some("sweep") => Ok((schema, batches)),
+        Some(kind) => bail!(
+            "{} is not a sweep file of touchdown (it is a {kind} file)",
+            path.display()
+        ),
+        None => bail!("{} is not a sweep file of touchdown", path.display()),
+    }
+}
+
 /// Record batches as a reader yields them.
 pub type Batches = Box<dyn Iterator<Item = Result<RecordBatch, arrow_schema::ArrowError>>>;

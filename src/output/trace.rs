@@ -75,6 +75,14 @@ fn columns(legs: usize) -> Vec<(String, &'static str, String)> {
     c
 }
 
+/// Appends the row of `r` to the columns `data` (`buf` holds it on the way).
+fn push_row(model: &Model, r: &StepReport, buf: &mut Vec<f64>, data: &mut [Vec<f64>]) {
+    row(model, r, buf);
+    for (c, v) in data.iter_mut().zip(buf.iter()) {
+        c.push(*v);
+    }
+}
+
 /// One row of the trace from a step report.
 fn row(model: &Model, r: &StepReport, out: &mut Vec<f64>) {
     out.clear();
@@ -189,10 +197,7 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
             return;
         }
         if index.is_multiple_of(every) {
-            row(model, report, &mut buf);
-            for (c, v) in data.iter_mut().zip(&buf) {
-                c.push(*v);
-            }
+            push_row(model, report, &mut buf, &mut data);
             rows += 1;
             if data[0].len() >= BATCH_ROWS
                 && let Err(e) = flush(&mut data, &mut writer)
@@ -206,10 +211,7 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
         return Err(e);
     }
     // The last row is the state at the decision, whatever `every`.
-    row(model, &end, &mut buf);
-    for (c, v) in data.iter_mut().zip(&buf) {
-        c.push(*v);
-    }
+    push_row(model, &end, &mut buf, &mut data);
     rows += 1;
     if !data[0].is_empty() {
         flush(&mut data, &mut writer)?;
