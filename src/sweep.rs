@@ -142,6 +142,16 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
         early_tipping: m.thresholds.early_tipping,
         quasi_static_force_squared: lane((2.0 * m.mass_kg * m.gravity_m_s2).powi(2)),
         rest_contacts: lane(m.legs.len().min(3) as f64),
+        early_sliding: m.slides_decidable(),
+        early_bouncing: m.thresholds.early_bouncing,
+        leg_count: lane(m.legs.len() as f64),
+        weight_n: lane(m.mass_kg * m.gravity_m_s2),
+        friction_coefficient_squared: lane(m.contact.friction_coefficient.powi(2)),
+        inertia_min_kg_m2: lane(m.inertia_kg_m2.min_element()),
+        diverged_momentum_squared: lane(
+            (m.inertia_kg_m2.min_element() * m.thresholds.diverged_rate_rad_s).powi(2),
+        ),
+        terrain_top_m: lane(m.terrain_top_m()),
     }
 }
 

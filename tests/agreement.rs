@@ -8,8 +8,8 @@
 //! through its bounces, so differences of 1e-16 can grow; a sample whose outcome is
 //! decided by a hair may then be decided the other way. Such disagreements are counted
 //! and each one must be explained: the reference itself, nudged by one part in 1e9 of its
-//! touchdown speed, must be able to reach the kernel's outcome, or the sample must have
-//! ended at a decision boundary (a decided time within 1 % of the other's). Continuous
+//! touchdown speed, must be able to reach the kernel's outcome, or both must have been
+//! classified at t_max (from states that rounding moved apart). Continuous
 //! results of agreeing samples must agree within the tolerances below.
 
 use kernels::isa::Isa;
@@ -65,7 +65,11 @@ fn compare(name: &str, scenario: &Scenario, n: u64) -> Vec<(Isa, [u64; 4])> {
             let k = &row.summary;
             if r.outcome != k.outcome {
                 disagree += 1;
-                let explained = near_threshold(&model, &row.sample, k.outcome);
+                // Classified at t_max from a state that rounding has moved (a lander
+                // hopping at 20 s touches at the last step or not, starts a rest or not):
+                // the end of the run is the boundary.
+                let at_t_max = r.decided_s >= model.t_max_s && k.decided_s >= model.t_max_s;
+                let explained = at_t_max || near_threshold(&model, &row.sample, k.outcome);
                 if !explained {
                     unexplained += 1;
                 }
@@ -75,7 +79,9 @@ fn compare(name: &str, scenario: &Scenario, n: u64) -> Vec<(Isa, [u64; 4])> {
                     r.decided_s,
                     k.outcome.name(),
                     k.decided_s,
-                    if explained {
+                    if at_t_max {
+                        "both at t_max"
+                    } else if explained {
                         "near a threshold"
                     } else {
                         "UNEXPLAINED"
@@ -163,6 +169,19 @@ fn kernels_agree_with_the_reference() {
             "elastic surface, 90 psi multi-stage, not pre-crushed",
             scenario(
                 "[surface]\ndamping_n_s_per_m = 0.0\n[damper]\nenabled = true\npre_crushed = false\nstages = [{ stroke_m = 0.01, crush_strength_psi = 90.0 }, { stroke_m = 0.04, crush_strength_psi = 210.0 }]",
+            ),
+            1000,
+        ),
+        (
+            // Stiff contact, slopes past the friction angle: the early `sliding` and
+            // `bouncing` rules fire (in about 8 % of the samples).
+            "MuJoCo-matched",
+            scenario(
+                &std::fs::read_to_string(
+                    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                        .join("scenarios/mujoco-matched.toml"),
+                )
+                .unwrap(),
             ),
             1000,
         ),

@@ -2,6 +2,7 @@
 //! footpads stick, `tipped` before 90 deg only where running on cannot change it. Both in
 //! the scalar reference and in the SIMD kernels.
 
+use kernels::outcome::SLIDE_EDGE_MARGIN;
 use touchdown::reference::{self, Model, Outcome, Summary};
 use touchdown::scenario::Scenario;
 use touchdown::sweep;
@@ -27,7 +28,8 @@ fn reference_run(scenario: &Scenario, i: u64) -> Summary {
 
 /// A lander set down at rest (no clearance, no velocity, attitude and rates zero against
 /// the surface normal) on slope grid `slopes`, side facing downhill along X, with an initial
-/// downhill speed `speed_m_s`; 30 s.
+/// downhill speed `speed_m_s`; 30 s. The early `sliding` rule is off: these tests follow
+/// a slide to t_max (`set_down_at_rest_...` also runs it with the rule on).
 fn set_down(legs: usize, mu: f64, slopes: [f64; 2], speed_m_s: f64) -> Scenario {
     Scenario::from_toml(&format!(
         r#"
@@ -52,6 +54,8 @@ rate_y_deg_s = 0.0
 rate_z_deg_s = 0.0
 [simulation]
 t_max_s = 30.0
+[outcome]
+early_sliding = false
 "#,
         slopes[0], slopes[1]
     ))
@@ -93,6 +97,24 @@ fn set_down_at_rest_stands_below_the_friction_angle_and_slides_above() {
                     if got.outcome != expected {
                         problems.push(format!("{case}: {who} {}", got.outcome.name()));
                     }
+                }
+                // The early rule: the same outcome; the slide decided before t_max where
+                // the rule's tipping margin holds: SLIDE_EDGE_MARGIN mu below the ratio
+                // r / h of the nearest edge, tan of the static limit with a side downhill
+                // (44.7 deg for four legs, 35.0 for three: mu 0.6 is too close on three).
+                let mut early_scenario = s.clone();
+                early_scenario.outcome.early_sliding = true;
+                let e = reference_run(&early_scenario, i);
+                let static_limit_deg: f64 = if legs == 4 { 44.7 } else { 35.0 };
+                let margin_holds = SLIDE_EDGE_MARGIN * mu < static_limit_deg.to_radians().tan();
+                let early_expected = expected == Outcome::Sliding && margin_holds;
+                let early = e.outcome == Outcome::Sliding && e.decided_s < s.simulation.t_max_s;
+                if e.outcome != expected || early != early_expected {
+                    problems.push(format!(
+                        "{case}: with the early rule {} at {:.3} s",
+                        e.outcome.name(),
+                        e.decided_s
+                    ));
                 }
                 if expected == Outcome::Sliding {
                     let a = slopes[1].to_radians();
@@ -191,6 +213,11 @@ const STRETCH: f64 = 5.0;
 /// rule, to `STRETCH` times t_max; compares them sample by sample.
 fn both_ways(scenario: &Scenario, n: u64) -> RunOn {
     assert!(scenario.outcome.early_tipping);
+    // Only the tipping rule is under test here (the others have their own test below).
+    let mut scenario = scenario.clone();
+    scenario.outcome.early_sliding = false;
+    scenario.outcome.early_bouncing = false;
+    let scenario = &scenario;
     let early = kernel_run(scenario, n);
     let mut late_scenario = scenario.clone();
     late_scenario.outcome.early_tipping = false;
@@ -279,4 +306,81 @@ fn an_early_tipped_lander_tips_when_run_on() {
         wrong.extend(r.wrong.into_iter().map(|w| format!("{name}: {w}")));
     }
     assert!(wrong.is_empty(), "{wrong:#?}");
+}
+
+#[test]
+fn early_sliding_and_bouncing_change_no_outcome() {
+    // The early `sliding` and `bouncing` rules (MODEL.md section 8) end runs whose outcome
+    // at t_max is already fixed. Every sample, run with them and without (to t_max), must
+    // end with the same outcome, and no later. The scenarios: the MuJoCo-matched one
+    // (stiff contact, slopes to 40 deg past the friction angle of 26.6: steady slides,
+    // 20 s), the stiff 20 s one of this file, the default sweep (120 s), flat, three legs,
+    // dampers of 50 psi (the rule stays on: no slide can crush them), rough ground (no
+    // early sliding: the terrain changes under a slide).
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let file = |name: &str| {
+        Scenario::from_toml(&std::fs::read_to_string(dir.join(name)).unwrap()).unwrap()
+    };
+    let cases = [
+        (
+            "scenarios/mujoco-matched.toml",
+            file("mujoco-matched.toml"),
+            6000,
+        ),
+        (
+            "stiff, 20 s",
+            Scenario::from_toml(STIFF_20_S).unwrap(),
+            3000,
+        ),
+        ("default", Scenario::default(), 2000),
+        ("scenarios/flat.toml", file("flat.toml"), 1500),
+        ("scenarios/legs-3.toml", file("legs-3.toml"), 1500),
+        (
+            "scenarios/honeycomb-50psi.toml",
+            file("honeycomb-50psi.toml"),
+            1500,
+        ),
+        ("scenarios/rough.toml", file("rough.toml"), 1000),
+    ];
+    let mut wrong = Vec::new();
+    let (mut slides, mut flights) = (0, 0);
+    for (name, scenario, n) in cases {
+        assert!(scenario.outcome.early_sliding && scenario.outcome.early_bouncing);
+        let early = kernel_run(&scenario, n);
+        let mut late_scenario = scenario.clone();
+        late_scenario.outcome.early_sliding = false;
+        late_scenario.outcome.early_bouncing = false;
+        let late = kernel_run(&late_scenario, n);
+        let t_max = scenario.simulation.t_max_s;
+        let (mut slid, mut flew, mut steps, mut steps_late) = (0, 0, 0, 0);
+        for (i, (e, l)) in early.iter().zip(&late).enumerate() {
+            steps += e.steps;
+            steps_late += l.steps;
+            if e.outcome != l.outcome || e.decided_s > l.decided_s {
+                wrong.push(format!(
+                    "{name}, sample {i}: {} at {:.3} s, run to t_max {} at {:.3} s",
+                    e.outcome.name(),
+                    e.decided_s,
+                    l.outcome.name(),
+                    l.decided_s
+                ));
+            }
+            let early_call = e.decided_s < t_max && e.decided_s < l.decided_s;
+            slid += usize::from(early_call && e.outcome == Outcome::Sliding);
+            flew += usize::from(early_call && e.outcome == Outcome::Bouncing);
+        }
+        println!(
+            "{name}: {n} samples, {slid} decided sliding early, {flew} bouncing early, steps {:.1} % fewer",
+            100.0 * (1.0 - steps as f64 / steps_late as f64)
+        );
+        if name == "scenarios/rough.toml" {
+            assert_eq!(slid, 0, "no early sliding on rough ground");
+        }
+        slides += slid;
+        flights += flew;
+    }
+    assert!(wrong.is_empty(), "{wrong:#?}");
+    // The comparison means something only where the rules fire.
+    assert!(slides >= 500, "only {slides} early slides");
+    assert!(flights >= 20, "only {flights} early flights");
 }

@@ -1293,7 +1293,14 @@ fn outcome_never_landing_is_bouncing() {
         s.initial.clearance_m = clearance;
         s.surface.damping_n_s_per_m = damping;
         s.simulation.t_max_s = 30.0;
+        // Run to t_max, and with the early `bouncing` rule (MODEL.md section 8): the same
+        // outcome, decided as soon as the flight cannot end before t_max (all four can't:
+        // rising faster than g0 t_max / 2 from above the legs' reach, no gravity, or an
+        // elastic rebound into a 60 s flight), after the first contact where there is one.
+        s.outcome.early_bouncing = false;
         let summary = classify(&s, moving(velocity, [0.0; 3]));
+        s.outcome.early_bouncing = true;
+        let early = classify(&s, moving(velocity, [0.0; 3]));
         table.equal(name, "outcome", summary.outcome, Outcome::Bouncing);
         table.close(name, "decided at (s)", summary.decided_s, 30.0, 1e-9);
         table.equal(
@@ -1301,6 +1308,18 @@ fn outcome_never_landing_is_bouncing() {
             "touched the surface",
             summary.first_contact_s.is_some(),
             velocity[2] < 0.0,
+        );
+        table.equal(
+            name,
+            "outcome, early rule",
+            early.outcome,
+            Outcome::Bouncing,
+        );
+        table.equal(
+            name,
+            "decided before t_max, after any contact",
+            early.decided_s < 30.0 && early.first_contact_s.is_none_or(|t| t < early.decided_s),
+            true,
         );
     }
     table.finish();

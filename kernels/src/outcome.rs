@@ -33,6 +33,31 @@ pub const REST_GAP_M: f64 = 1e-6;
 /// two apart: both are slower than any rest speed in milligravity.
 pub const REST_SLIP_M: f64 = 1e-6;
 
+/// The early `sliding` rule's band on the contact force: the normal forces of a settled
+/// slide sum to the weight's normal share `m g cos(slope)` within this fraction of it. The
+/// band excludes impacts and rocking (the sum swings far beyond it) and admits the settled
+/// slide, whose sum sits at the share to 1e-3 (measured on the MuJoCo-matched scenario).
+pub const SLIDE_FORCE_BAND: f64 = 0.1;
+
+/// The early `sliding` rule's least share of a leg: every leg bears at least this fraction
+/// of the mean normal force. A slide tips over a leg only after the legs behind it unload;
+/// the settled slide of the MuJoCo-matched lander (friction 0.5) loads its lightest leg
+/// with 0.47 of the mean, sliding along a side.
+pub const SLIDE_LEG_SHARE: f64 = 0.25;
+
+/// The early `sliding` rule's margin against tipping in a slide: the CG's foot on the plane
+/// lies inside every edge of the support polygon by more than this times `mu h` (`h` the
+/// CG's height). Sliding, the contact force meets the plane `mu h` ahead of the CG's foot
+/// in the direction of the slide; a lander that turns about the normal as it slides may
+/// bring any edge to face that way, so every edge must be clear of it.
+pub const SLIDE_EDGE_MARGIN: f64 = 1.25;
+
+/// The early `bouncing` rule's margin on the fastest turn `|L| / I_min`: the integrator
+/// keeps `|L|` of a free flight to 1.5e-5 at 0.5 rad/s and the longest flight step
+/// (measured in the reference's `free_flight_keeps_the_angular_momentum`); 10 % more turn
+/// than the bound allows covers that thousands of times.
+pub const TURN_MARGIN: f64 = 1.1;
+
 /// Mask: every one of `xs` is finite. `x * 0` is 0 for a finite `x` and NaN for an infinite
 /// or NaN one, so the sum of the products is 0 exactly when all are finite.
 #[inline(always)]
@@ -66,9 +91,11 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
     let mut resting = zero;
     let mut deepest = L::splat(f64::NEG_INFINITY);
     let rest_gap = L::splat(-REST_GAP_M);
+    let mut slipping = zero;
     for (leg, step) in block.legs.iter_mut().zip(&block.leg_step) {
         leg.peak_normal_n = max_into(leg.peak_normal_n, step.normal_n);
         contacts += step.penetration_m.simd_gt(zero).select(one, zero);
+        slipping += step.slipping.select(one, zero);
         resting += step.penetration_m.simd_gt(rest_gap).select(one, zero);
         deepest = max_into(deepest, step.penetration_m);
     }
@@ -190,11 +217,130 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
         touching.select(L::splat(SLIDING), L::splat(BOUNCING)),
     );
 
+    // The early rules, in lanes that no rule above decided. (Only blocks with a lane where
+    // every footpad slips, or with one in flight, compute them.)
+    let open = active & !(diverged | tipped | stable | ended);
+    let mut slide = all_false::<L>();
+    if p.early_sliding {
+        let all_slipping = slipping.simd_eq(p.leg_count);
+        if (all_slipping & open).to_bitmask() != 0 {
+            slide = all_slipping & steady_slide(p, block);
+        }
+    }
+    let mut flight_over = all_false::<L>();
+    if p.early_bouncing {
+        let flying = !touching;
+        if (flying & open).to_bitmask() != 0 {
+            flight_over = flying & cannot_return(p, block);
+        }
+    }
+
     let code = diverged.select(
         L::splat(DIVERGED),
-        tipped.select(L::splat(TIPPED), stable.select(L::splat(STABLE), at_end)),
+        tipped.select(
+            L::splat(TIPPED),
+            stable.select(
+                L::splat(STABLE),
+                ended.select(at_end, slide.select(L::splat(SLIDING), L::splat(BOUNCING))),
+            ),
+        ),
     );
-    let decided = active & (diverged | tipped | stable | ended);
-    t.outcome = decided.select(code, t.outcome);
+    let decided = active & (diverged | tipped | stable | ended | slide | flight_over);
+    block.track.outcome = decided.select(code, block.track.outcome);
     decided
+}
+
+/// Mask: the speed stays below the divergence threshold until `t_max` (the reference's
+/// `speed_bounded`).
+#[inline(always)]
+fn speed_bounded<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+    let two = L::splat(2.0);
+    let g_remaining = p.gravity_m_s2 * (p.t_max_s - block.t_s);
+    (two * block.velocity_m_s.length_squared() + two * (g_remaining * g_remaining))
+        .simd_lt(p.diverged_speed_squared)
+}
+
+/// Mask: the step just made is one of a steady slide (the reference's `steady_slide`; the
+/// caller checks that every footpad slips).
+#[inline(always)]
+fn steady_slide<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+    let zero = L::splat(0.0);
+    let n = block.surface.normal;
+    let steep = (n.x * n.x + n.y * n.y).simd_gt(p.friction_coefficient_squared * (n.z * n.z));
+    let w = block.rate_rad_s;
+    let spin = w.dot(block.rotation.transpose_mul_vec3(n));
+    let rocking_squared = w.length_squared() - spin * spin;
+    let steady_attitude = rocking_squared.simd_lt(p.rest_rate_squared);
+    let moving_down = block.velocity_m_s.z.simd_lt(zero);
+    let weight_share = p.weight_n * n.z;
+    let mut total = zero;
+    let mut least = L::splat(f64::INFINITY);
+    for step in &block.leg_step {
+        total += step.normal_n;
+        least = min_into(least, step.normal_n);
+    }
+    let settled = (total - weight_share)
+        .abs()
+        .simd_le(L::splat(SLIDE_FORCE_BAND) * weight_share);
+    let borne = least.simd_ge(L::splat(SLIDE_LEG_SHARE) / p.leg_count * total);
+    steep
+        & steady_attitude
+        & moving_down
+        & settled
+        & borne
+        & inside_by(p, block)
+        & speed_bounded(p, block)
+}
+
+/// Mask: the CG's foot on the plane lies inside every edge of the support polygon by more
+/// than `SLIDE_EDGE_MARGIN mu h` (the reference's `inside_by`).
+#[inline(always)]
+fn inside_by<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+    let zero = L::splat(0.0);
+    let n = block.surface.normal;
+    let x = block.start_position_m;
+    let height = n.dot(x);
+    let foot = x - n * height;
+    let least = L::splat(SLIDE_EDGE_MARGIN) * p.friction_coefficient * height;
+    let legs = &block.leg_step;
+    let centroid =
+        legs.iter().fold(Vec3::ZERO, |c, l| c + l.tip_m) * L::splat(1.0 / legs.len() as f64);
+    let mut inside = if p.edges.is_empty() {
+        all_false()
+    } else {
+        all_true::<L>()
+    };
+    for [i, j] in &p.edges {
+        let a = legs[*i].tip_m;
+        let edge = legs[*j].tip_m - a;
+        // (No closure here: it would not be inlined into the kernel's instruction set.)
+        let foot_side = edge.cross(foot - a).dot(n);
+        let centroid_side = edge.cross(centroid - a).dot(n);
+        inside &= (foot_side * centroid_side).simd_gt(zero)
+            & (foot_side * foot_side).simd_gt(least * least * edge.length_squared());
+    }
+    inside
+}
+
+/// Mask: a flight that cannot end before `t_max` (the reference's `cannot_return`), on the
+/// state after a step without contact.
+#[inline(always)]
+fn cannot_return<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+    let zero = L::splat(0.0);
+    let n = block.surface.normal;
+    let remaining = p.t_max_s - block.t_s;
+    let height = n.dot(block.position_m) - p.terrain_top_m - p.leg_reach_m;
+    let fall = L::splat(0.5) * p.gravity_m_s2 * n.z * remaining;
+    let height_at_end = height + remaining * (n.dot(block.velocity_m_s) - fall);
+    let clear = height.simd_gt(zero) & height_at_end.simd_gt(zero);
+    let i = p.inertia_kg_m2;
+    let w = block.rate_rad_s;
+    let momentum_squared = Vec3::new(i.x * w.x, i.y * w.y, i.z * w.z).length_squared();
+    let cos_tilt = block.rotation.z_axis.dot(n);
+    let turn = L::splat(TURN_MARGIN) * remaining;
+    let tilt_margin = cos_tilt * p.inertia_min_kg_m2;
+    let upright = cos_tilt.simd_gt(zero)
+        & (tilt_margin * tilt_margin).simd_gt(momentum_squared * (turn * turn));
+    let turning_bounded = momentum_squared.simd_lt(p.diverged_momentum_squared);
+    clear & upright & turning_bounded & speed_bounded(p, block)
 }

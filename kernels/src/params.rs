@@ -75,6 +75,24 @@ pub struct Params<L> {
     pub quasi_static_force_squared: L,
     /// Legs that must touch for rest: three, or all when fewer.
     pub rest_contacts: L,
+    /// Whether a steady slide is decided `sliding` early (the scenario asks for it, the
+    /// surface is a plane and no damper can crush in a slide: the reference's
+    /// `Model::slides_decidable`).
+    pub early_sliding: bool,
+    /// Whether a flight that cannot end before `t_max` is decided `bouncing` early.
+    pub early_bouncing: bool,
+    /// Number of legs.
+    pub leg_count: L,
+    /// `m g`.
+    pub weight_n: L,
+    /// The friction coefficient squared.
+    pub friction_coefficient_squared: L,
+    /// The least principal moment of inertia.
+    pub inertia_min_kg_m2: L,
+    /// `(I_min diverged_rate)^2`: the squared angular momentum of the divergence threshold.
+    pub diverged_momentum_squared: L,
+    /// Height of the terrain's highest point above the plane (0 for the plane), m.
+    pub terrain_top_m: L,
 }
 
 /// Broadcasts a scalar, outside the kernels: through memory, with no SIMD instruction

@@ -56,6 +56,8 @@ pub struct Thresholds {
     pub diverged_rate_rad_s: f64,
     pub diverged_penetration_m: f64,
     pub early_tipping: bool,
+    pub early_sliding: bool,
+    pub early_bouncing: bool,
 }
 
 /// Everything a sweep holds fixed, in the units the physics uses.
@@ -167,11 +169,34 @@ impl Model {
                 diverged_rate_rad_s: o.diverged_rate_deg_s.to_radians(),
                 diverged_penetration_m: o.diverged_penetration_m,
                 early_tipping: o.early_tipping,
+                early_sliding: o.early_sliding,
+                early_bouncing: o.early_bouncing,
             },
             attitude_surface: s.initial.attitude_reference
                 == crate::scenario::AttitudeReference::Surface,
             clearance_m: s.initial.clearance_m,
         }
+    }
+
+    /// Whether a steady slide may be decided `sliding` early (MODEL.md section 8): on a
+    /// plane (a rough terrain changes under a sliding lander), and with dampers, if any,
+    /// that no leg of a steady slide can crush. A leg then bears at most the settled normal
+    /// force, `(1 + SLIDE_FORCE_BAND) m g`, with its friction: below `(1 + mu)` times that.
+    #[must_use]
+    pub fn slides_decidable(&self) -> bool {
+        let band = 1.0 + kernels::outcome::SLIDE_FORCE_BAND;
+        let slide_load =
+            (1.0 + self.contact.friction_coefficient) * band * self.mass_kg * self.gravity_m_s2;
+        let crush_least = self.honeycomb.as_ref().map_or(f64::INFINITY, |h| {
+            h.stages.iter().map(|s| s.1).fold(h.peak_force_n, f64::min)
+        });
+        self.thresholds.early_sliding && self.terrain.is_none() && crush_least > slide_load
+    }
+
+    /// Height of the highest point of the terrain above the plane (0 for the plane), m.
+    #[must_use]
+    pub fn terrain_top_m(&self) -> f64 {
+        self.terrain.as_ref().map_or(0.0, |t| t.height_max_m())
     }
 
     /// Largest distance of a footpad from the CG, m.

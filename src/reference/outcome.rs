@@ -16,12 +16,26 @@
 //!   footpad in contact sticking: its friction anchor within `REST_SLIP_M` (1 micrometre)
 //!   of where it was after the first step of the rest;
 //! - at `t_max`: `stable` if at rest, else `sliding` if a leg touches the surface, else
-//!   `bouncing`.
+//!   `bouncing`;
+//! - with `early_sliding`, `sliding` before `t_max` in a steady slide down a plane steeper
+//!   than the friction angle: every footpad slipping, the CG moving down, the body rate
+//!   apart from its spin about the normal below the rest rate, the normal forces summing
+//!   to the weight's normal share within `SLIDE_FORCE_BAND` and each leg bearing at least
+//!   `SLIDE_LEG_SHARE` of the mean, the CG's foot on the plane inside every edge of the
+//!   support polygon by `SLIDE_EDGE_MARGIN mu h`, and the speed bound to stay below the
+//!   divergence threshold until `t_max`;
+//! - with `early_bouncing`, `bouncing` before `t_max` in a flight that cannot end before
+//!   it: no footpad touching, the CG higher above the terrain's top than any footpad
+//!   reaches, now and at `t_max` on its ballistic arc (the arc is concave, so no lower in
+//!   between), and the tilt too far from 90 deg to pass it at the fastest turn the angular
+//!   momentum allows, `|L| / I_min`, with the margin `TURN_MARGIN`.
 
 use super::model::{Model, Surface};
 use super::step::{State, StepReport};
-use glam::DVec3;
-use kernels::outcome::{REST_GAP_M, REST_SLIP_M};
+use glam::{DMat3, DVec3};
+use kernels::outcome::{
+    REST_GAP_M, REST_SLIP_M, SLIDE_EDGE_MARGIN, SLIDE_FORCE_BAND, SLIDE_LEG_SHARE, TURN_MARGIN,
+};
 
 /// How a touchdown ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -250,6 +264,12 @@ impl Tracker {
                 Outcome::Bouncing
             });
         }
+        if model.slides_decidable() && steady_slide(model, surface, report, after) {
+            return Some(Outcome::Sliding);
+        }
+        if th.early_bouncing && contacts == 0 && cannot_return(model, surface, after) {
+            return Some(Outcome::Bouncing);
+        }
         None
     }
 
@@ -287,4 +307,97 @@ impl Tracker {
                 .collect(),
         }
     }
+}
+
+/// Whether the speed stays below the divergence threshold until `t_max`: `|v| + g T`,
+/// bounded without a root by `(a + b)^2 <= 2 a^2 + 2 b^2`.
+fn speed_bounded(model: &Model, after: &State) -> bool {
+    let g_remaining = model.gravity_m_s2 * (model.t_max_s - after.t_s);
+    2.0 * after.body.velocity_m_s.length_squared() + 2.0 * (g_remaining * g_remaining)
+        < model.thresholds.diverged_speed_m_s.powi(2)
+}
+
+/// The early `sliding` rule (see the module's rules): a steady slide down a plane steeper
+/// than the friction angle cannot stop (friction, at most `mu` times the normal force,
+/// cannot hold the weight's share along the slope), lift off or tip (every leg bears its
+/// share of a settled load, and the centre of pressure, `mu h` ahead of the CG's foot in
+/// the direction of the slide, stays inside the support polygon whichever way the lander
+/// turns about the normal) before `t_max`.
+fn steady_slide(model: &Model, surface: &Surface, report: &StepReport, after: &State) -> bool {
+    let n = surface.normal;
+    let mu = model.contact.friction_coefficient;
+    // tan(slope) > mu, without the tangent: sin^2 > mu^2 cos^2.
+    let steep = n.x * n.x + n.y * n.y > mu * mu * (n.z * n.z);
+    // Not rocking: the body rate less its spin about the normal below the rest rate.
+    let b = &after.body;
+    let spin = b
+        .rate_rad_s
+        .dot(DMat3::from_quat(b.attitude).transpose() * n);
+    let rocking_squared = b.rate_rad_s.length_squared() - spin * spin;
+    let steady_attitude = rocking_squared < model.thresholds.rest_rate_rad_s.powi(2);
+    let moving_down = b.velocity_m_s.z < 0.0;
+    let slipping = report.legs.iter().all(|l| l.slipping);
+    let weight_share = model.mass_kg * model.gravity_m_s2 * n.z;
+    let total: f64 = report.legs.iter().map(|l| l.normal_n).sum();
+    let settled = (total - weight_share).abs() <= SLIDE_FORCE_BAND * weight_share;
+    let least = report
+        .legs
+        .iter()
+        .map(|l| l.normal_n)
+        .fold(f64::INFINITY, f64::min);
+    let borne = least >= SLIDE_LEG_SHARE / report.legs.len() as f64 * total;
+    steep
+        && steady_attitude
+        && moving_down
+        && slipping
+        && settled
+        && borne
+        && inside_by(model, surface, report)
+        && speed_bounded(model, after)
+}
+
+/// Whether the CG's foot on the plane lies inside every edge of the support polygon by
+/// more than `SLIDE_EDGE_MARGIN mu h` (`h` the CG's height above the plane), each edge
+/// taken between the footpads of the step, in the plane.
+fn inside_by(model: &Model, surface: &Surface, report: &StepReport) -> bool {
+    let n = surface.normal;
+    let x = report.body.position_m;
+    let height = n.dot(x);
+    let foot = x - n * height;
+    let least = SLIDE_EDGE_MARGIN * model.contact.friction_coefficient * height;
+    let centroid = report.legs.iter().map(|l| l.tip_m).sum::<DVec3>() / report.legs.len() as f64;
+    model.edges.iter().all(|[i, j]| {
+        let a = report.legs[*i].tip_m;
+        let edge = report.legs[*j].tip_m - a;
+        // Twice the signed area of (a, c, point): its distance from the edge times |edge|.
+        let side = |p: DVec3| edge.cross(p - a).dot(n);
+        let (foot_side, centroid_side) = (side(foot), side(centroid));
+        foot_side * centroid_side > 0.0
+            && foot_side * foot_side > least * least * edge.length_squared()
+    }) && !model.edges.is_empty()
+}
+
+/// The early `bouncing` rule (see the module's rules), on the state after a step without
+/// contact.
+fn cannot_return(model: &Model, surface: &Surface, after: &State) -> bool {
+    let b = &after.body;
+    let n = surface.normal;
+    let remaining = model.t_max_s - after.t_s;
+    // The CG's height above the terrain's top, less the reach of any footpad: positive now
+    // and, on the ballistic arc along the normal, at t_max.
+    let height = n.dot(b.position_m) - model.terrain_top_m() - model.leg_reach_m();
+    let fall = 0.5 * model.gravity_m_s2 * n.z * remaining;
+    let height_at_end = height + remaining * (n.dot(b.velocity_m_s) - fall);
+    let clear = height > 0.0 && height_at_end > 0.0;
+    // Torque-free, the body rate is at most |L| / I_min; Z_B turns no faster. A tilt
+    // `theta` stays below 90 deg for T if theta + |w| T < pi / 2, which cos(theta) > |w| T
+    // implies (cos(theta) > x >= sin(x) = cos(pi / 2 - x)).
+    let i = model.inertia_kg_m2;
+    let momentum_squared = (i * b.rate_rad_s).length_squared();
+    let i_min = i.min_element();
+    let cos_tilt = DMat3::from_quat(b.attitude).z_axis.dot(n);
+    let turn = TURN_MARGIN * remaining;
+    let upright = cos_tilt > 0.0 && (cos_tilt * i_min).powi(2) > momentum_squared * (turn * turn);
+    let turning_bounded = momentum_squared < (i_min * model.thresholds.diverged_rate_rad_s).powi(2);
+    clear && upright && turning_bounded && speed_bounded(model, after)
 }

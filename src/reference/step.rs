@@ -152,7 +152,7 @@ pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
     if model.flight_step_max_s > model.step_s {
         let body = &state.body;
         let rotation = DMat3::from_quat(body.attitude);
-        let top = model.terrain.as_ref().map_or(0.0, |t| t.height_max_m());
+        let top = model.terrain_top_m();
         // Height of a footpad above `top`: that of the CG, plus the footpad's offset from
         // the CG along the normal (taken in B, where the footpads are).
         let normal_b = rotation.transpose() * surface.normal;

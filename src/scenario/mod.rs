@@ -332,6 +332,12 @@ pub struct Outcome {
     /// Decide `tipped` at the point of no return (MODEL.md section 8) instead of only when
     /// the tilt passes 90 deg.
     pub early_tipping: bool,
+    /// Decide `sliding` once the lander slides steadily down a plane steeper than the
+    /// friction angle (MODEL.md section 8) instead of running on to t_max.
+    pub early_sliding: bool,
+    /// Decide `bouncing` once the lander flies clear and can neither come back to the
+    /// surface nor turn past 90 deg before t_max.
+    pub early_bouncing: bool,
 }
 
 /// A complete, validated scenario.
@@ -439,6 +445,8 @@ impl Default for Scenario {
                 diverged_rate_deg_s: 3600.0,
                 diverged_penetration_m: 0.5,
                 early_tipping: true,
+                early_sliding: true,
+                early_bouncing: true,
             },
         }
     }
@@ -1108,6 +1116,8 @@ fn read_outcome(top: &mut Reader, d: &Outcome) -> Result<Outcome, ScenarioError>
         diverged_rate_deg_s: r.positive("diverged_rate_deg_s", d.diverged_rate_deg_s)?,
         diverged_penetration_m: r.positive("diverged_penetration_m", d.diverged_penetration_m)?,
         early_tipping: r.bool("early_tipping", d.early_tipping)?,
+        early_sliding: r.bool("early_sliding", d.early_sliding)?,
+        early_bouncing: r.bool("early_bouncing", d.early_bouncing)?,
     };
     r.finish()?;
     Ok(o)
