@@ -137,22 +137,29 @@ fn set_down_at_rest_stands_below_the_friction_angle_and_slides_above() {
 
 #[test]
 fn a_slow_slider_is_sliding() {
-    // Started at 1 mm/s downhill 0.5 deg above the friction angle, the lander moves five
-    // times slower than the rest speed for the whole run: the rule of speeds alone called
-    // it `stable` after the hold time. Its footpads slip all the way: `sliding`.
+    // Started at 1 mm/s downhill 0.5 deg above the friction angle, the lander moves slower
+    // than the rest speed for the whole run (10 s): the rule of speeds alone called it
+    // `stable` after the hold time. Its footpads slip all the way: `sliding`. At t_max too,
+    // whichever step the run ends on: moving a few micrometres a step, it starts a rest
+    // every other step (the footpads are checked from the second step of a rest), and the
+    // classification at t_max must not take that first step for rest (before engine 0.4
+    // it did, and the outcome went by the parity of the last step: this test failed).
     for (legs, mu) in [(4, 0.6f64), (3, 0.3)] {
         let slope = mu.atan().to_degrees() + 0.5;
-        let s = set_down(legs, mu, [slope, slope], 0.001);
-        let r = reference_run(&s, 0);
-        let k = &kernel_run(&s, 1)[0];
-        for (who, got) in [("reference", &r), ("kernels", k)] {
-            assert_eq!(
-                got.outcome,
-                Outcome::Sliding,
-                "{legs} legs, mu {mu}, slope {slope:.2} deg: {who} decided {} at {:.3} s",
-                got.outcome.name(),
-                got.decided_s
-            );
+        for t_max in [10.0, 10.001, 10.002, 10.003] {
+            let mut s = set_down(legs, mu, [slope, slope], 0.001);
+            s.simulation.t_max_s = t_max;
+            let r = reference_run(&s, 0);
+            let k = &kernel_run(&s, 1)[0];
+            for (who, got) in [("reference", &r), ("kernels", k)] {
+                assert_eq!(
+                    got.outcome,
+                    Outcome::Sliding,
+                    "{legs} legs, mu {mu}, slope {slope:.2} deg, t_max {t_max} s: {who} decided {} at {:.3} s",
+                    got.outcome.name(),
+                    got.decided_s
+                );
+            }
         }
     }
 }

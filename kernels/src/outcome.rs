@@ -212,7 +212,10 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
     t.rest_s = at_rest.select(t.rest_s + block.dt_s, zero);
     let stable = t.rest_s.simd_ge(p.hold_time_s);
     let ended = block.t_s.simd_ge(p.t_max_s);
-    let at_end = at_rest.select(
+    // At t_max, at rest since before this step: its footpads were seen to stick (on the
+    // first step of a rest they are not checked, and a slow slider would pass every other
+    // step).
+    let at_end = (at_rest & in_rest).select(
         L::splat(STABLE),
         touching.select(L::splat(SLIDING), L::splat(BOUNCING)),
     );
@@ -261,16 +264,13 @@ fn speed_bounded<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
 }
 
 /// Mask: the step just made is one of a steady slide (the reference's `steady_slide`; the
-/// caller checks that every footpad slips).
+/// caller checks that every footpad slips). The cheap tests first: a block where no lane
+/// passes them skips the rest.
 #[inline(always)]
 fn steady_slide<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
     let zero = L::splat(0.0);
     let n = block.surface.normal;
     let steep = (n.x * n.x + n.y * n.y).simd_gt(p.friction_coefficient_squared * (n.z * n.z));
-    let w = block.rate_rad_s;
-    let spin = w.dot(block.rotation.transpose_mul_vec3(n));
-    let rocking_squared = w.length_squared() - spin * spin;
-    let steady_attitude = rocking_squared.simd_lt(p.rest_rate_squared);
     let moving_down = block.velocity_m_s.z.simd_lt(zero);
     let weight_share = p.weight_n * n.z;
     let mut total = zero;
@@ -283,13 +283,15 @@ fn steady_slide<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
         .abs()
         .simd_le(L::splat(SLIDE_FORCE_BAND) * weight_share);
     let borne = least.simd_ge(L::splat(SLIDE_LEG_SHARE) / p.leg_count * total);
-    steep
-        & steady_attitude
-        & moving_down
-        & settled
-        & borne
-        & inside_by(p, block)
-        & speed_bounded(p, block)
+    let cheap = steep & moving_down & settled & borne & block.active;
+    if cheap.to_bitmask() == 0 {
+        return all_false();
+    }
+    let w = block.rate_rad_s;
+    let spin = w.dot(block.rotation.transpose_mul_vec3(n));
+    let rocking_squared = w.length_squared() - spin * spin;
+    let steady_attitude = rocking_squared.simd_lt(p.rest_rate_squared);
+    cheap & steady_attitude & inside_by(p, block) & speed_bounded(p, block)
 }
 
 /// Mask: the CG's foot on the plane lies inside every edge of the support polygon by more
@@ -323,16 +325,21 @@ fn inside_by<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
 }
 
 /// Mask: a flight that cannot end before `t_max` (the reference's `cannot_return`), on the
-/// state after a step without contact.
+/// state after a step without contact. A block where no lane is above the legs' reach
+/// skips the rest (most flights of a hopping lander stay below it).
 #[inline(always)]
 fn cannot_return<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
     let zero = L::splat(0.0);
     let n = block.surface.normal;
-    let remaining = p.t_max_s - block.t_s;
     let height = n.dot(block.position_m) - p.terrain_top_m - p.leg_reach_m;
+    let high = height.simd_gt(zero) & block.active;
+    if high.to_bitmask() == 0 {
+        return all_false();
+    }
+    let remaining = p.t_max_s - block.t_s;
     let fall = L::splat(0.5) * p.gravity_m_s2 * n.z * remaining;
     let height_at_end = height + remaining * (n.dot(block.velocity_m_s) - fall);
-    let clear = height.simd_gt(zero) & height_at_end.simd_gt(zero);
+    let clear = high & height_at_end.simd_gt(zero);
     let i = p.inertia_kg_m2;
     let w = block.rate_rad_s;
     let momentum_squared = Vec3::new(i.x * w.x, i.y * w.y, i.z * w.z).length_squared();

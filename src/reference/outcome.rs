@@ -15,8 +15,8 @@
 //!   (1 micrometre) of it, the CG inside every edge of the support polygon, and every
 //!   footpad in contact sticking: its friction anchor within `REST_SLIP_M` (1 micrometre)
 //!   of where it was after the first step of the rest;
-//! - at `t_max`: `stable` if at rest, else `sliding` if a leg touches the surface, else
-//!   `bouncing`;
+//! - at `t_max`: `stable` if at rest since before the last step (its footpads seen to
+//!   stick), else `sliding` if a leg touches the surface, else `bouncing`;
 //! - with `early_sliding`, `sliding` before `t_max` in a steady slide down a plane steeper
 //!   than the friction angle: every footpad slipping, the CG moving down, the body rate
 //!   apart from its spin about the normal below the rest rate, the normal forces summing
@@ -256,7 +256,10 @@ impl Tracker {
             return Some(Outcome::Stable);
         }
         if after.t_s >= model.t_max_s {
-            return Some(if at_rest {
+            // At rest since before this step: its footpads were seen to stick (on the
+            // first step of a rest they are not checked, and a slow slider would pass
+            // every other step).
+            return Some(if at_rest && in_rest {
                 Outcome::Stable
             } else if contacts > 0 {
                 Outcome::Sliding
