@@ -126,10 +126,9 @@ pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
     let remaining = p.t_max_s - block.t_s;
     let mut dt = p.step_s;
     if p.long_flight_steps {
-        let top = L::splat(p.terrain.as_ref().map_or(0.0, |t| t.height_max_m()));
         let normal = block.surface.normal;
         let normal_b = block.rotation.transpose_mul_vec3(normal);
-        let height = normal.dot(block.position_m) - top;
+        let height = normal.dot(block.position_m) - p.terrain_top_m;
         let mut clearance = L::splat(f64::INFINITY);
         for (leg, state) in p.legs.iter().zip(&block.legs) {
             let tip_b = tip_in_body(p, leg, state.stroke_m);

@@ -267,7 +267,8 @@ impl Tracker {
                 Outcome::Bouncing
             });
         }
-        if model.slides_decidable() && steady_slide(model, surface, report, after) {
+        let all_slipping = report.legs.iter().all(|l| l.slipping);
+        if all_slipping && model.slides_decidable() && steady_slide(model, surface, report, after) {
             return Some(Outcome::Sliding);
         }
         if th.early_bouncing && contacts == 0 && cannot_return(model, surface, after) {
@@ -325,7 +326,7 @@ fn speed_bounded(model: &Model, after: &State) -> bool {
 /// cannot hold the weight's share along the slope), lift off or tip (every leg bears its
 /// share of a settled load, and the centre of pressure, `mu h` ahead of the CG's foot in
 /// the direction of the slide, stays inside the support polygon whichever way the lander
-/// turns about the normal) before `t_max`.
+/// turns about the normal) before `t_max`. The caller checks that every footpad slips.
 fn steady_slide(model: &Model, surface: &Surface, report: &StepReport, after: &State) -> bool {
     let n = surface.normal;
     let mu = model.contact.friction_coefficient;
@@ -339,7 +340,6 @@ fn steady_slide(model: &Model, surface: &Surface, report: &StepReport, after: &S
     let rocking_squared = b.rate_rad_s.length_squared() - spin * spin;
     let steady_attitude = rocking_squared < model.thresholds.rest_rate_rad_s.powi(2);
     let moving_down = b.velocity_m_s.z < 0.0;
-    let slipping = report.legs.iter().all(|l| l.slipping);
     let weight_share = model.mass_kg * model.gravity_m_s2 * n.z;
     let total: f64 = report.legs.iter().map(|l| l.normal_n).sum();
     let settled = (total - weight_share).abs() <= SLIDE_FORCE_BAND * weight_share;
@@ -352,7 +352,6 @@ fn steady_slide(model: &Model, surface: &Surface, report: &StepReport, after: &S
     steep
         && steady_attitude
         && moving_down
-        && slipping
         && settled
         && borne
         && inside_by(model, surface, report)
