@@ -2,13 +2,17 @@
 //! (lander-steps/s), and whole small sweeps of the default and the MuJoCo-matched scenario
 //! (samples/s).
 //!
-//! The states are the first second of eight touchdowns of the default sweep: legs in and
-//! out of contact, the expensive part of a sample (free flight takes long steps).
+//! The states are the first second of the first touchdowns of the default sweep (eight for
+//! f64 lanes, sixteen for f32, one lane value each): legs in and out of contact, the
+//! expensive part of a sample (free flight takes long steps). The reference steps the first
+//! eight.
+//!
+//! Every kernel this CPU runs, in both precisions: `step/kernel_f64x8_avx512`,
+//! `step/kernel_f32x16_avx512`, ...; sweeps in f64 and f32.
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
 use kernels::block::Block;
-use kernels::isa::{Isa, Kernel, WithKernel};
-use kernels::lane::LANES;
+use kernels::isa::{Isa, Kernel, KernelKind, Precision, WithKernel};
 use std::hint::black_box;
 use touchdown::reference::model::Surface;
 use touchdown::reference::outcome::Tracker;
@@ -23,27 +27,29 @@ const STEPS: u64 = 1000;
 fn kernel_vs_reference(c: &mut Criterion) {
     let scenario = Scenario::default();
     let model = Model::new(&scenario);
-    let samples: Vec<_> = (0..LANES as u64).map(|i| sample(&scenario, i)).collect();
+    let samples: Vec<_> = (0..16).map(|i| sample(&scenario, i)).collect();
 
     let mut g = c.benchmark_group("step");
-    g.throughput(Throughput::Elements(LANES as u64 * STEPS));
     // Every kernel this CPU runs, on the same states.
     struct Bench<'a, 'b> {
         group: &'a mut criterion::BenchmarkGroup<'b, criterion::measurement::WallTime>,
         model: &'a Model,
         samples: &'a [touchdown::sampling::Sample],
         key: &'static str,
+        precision: Precision,
     }
     impl WithKernel for Bench<'_, '_> {
         type Output = ();
         fn run<K: Kernel>(self) {
             let params = kernel_params::<K>(self.model);
             let mut block = Block::new(&params);
-            for (i, s) in self.samples.iter().enumerate() {
+            for (i, s) in self.samples[..K::LANES].iter().enumerate() {
                 block.load(i, &lane_init(self.model, s));
             }
+            let lanes = format!("{}x{}", self.precision.key(), K::LANES);
             self.group
-                .bench_function(format!("kernel_f64x8_{}", self.key), |b| {
+                .throughput(Throughput::Elements(K::LANES as u64 * STEPS))
+                .bench_function(format!("kernel_{lanes}_{}", self.key), |b| {
                     b.iter_batched_ref(
                         || block.clone(),
                         |blk| {
@@ -57,20 +63,24 @@ fn kernel_vs_reference(c: &mut Criterion) {
         }
     }
     for isa in Isa::ALL.into_iter().filter(|i| i.available()) {
-        isa.dispatch(Bench {
-            group: &mut g,
-            model: &model,
-            samples: &samples,
-            key: isa.key(),
-        });
+        for precision in Precision::ALL {
+            KernelKind { isa, precision }.dispatch(Bench {
+                group: &mut g,
+                model: &model,
+                samples: &samples,
+                key: isa.key(),
+                precision,
+            });
+        }
     }
-    let starts: Vec<_> = samples
+    let starts: Vec<_> = samples[..8]
         .iter()
         .map(|s| {
             let surface = Surface::of(s);
             (surface, initial_state(&model, &surface, s))
         })
         .collect();
+    g.throughput(Throughput::Elements(starts.len() as u64 * STEPS));
     g.bench_function("reference_scalar", |b| {
         b.iter_batched_ref(
             || starts.clone(),
@@ -92,40 +102,39 @@ fn kernel_vs_reference(c: &mut Criterion) {
 }
 
 fn sweep(c: &mut Criterion) {
-    let scenario = Scenario::from_toml("[simulation]\nt_max_s = 20.0").unwrap();
-    let model = Model::new(&scenario);
-    let n = 2000;
     let mut g = c.benchmark_group("sweep");
     g.sample_size(10);
-    g.throughput(Throughput::Elements(n));
-    g.bench_function("default_scenario_t_max_20s", |b| {
-        b.iter(|| {
-            let mut rows = 0;
-            touchdown::sweep::run(&scenario, &model, 0..n, 256, |r| {
-                rows += r.len();
-                Ok(())
-            })
-            .unwrap();
-            black_box(rows)
-        });
-    });
-    // The scenario matched to the MuJoCo reference run (../shared/anchors/mujoco/): the
-    // samples/s to compare with MuJoCo's, taken right after it on the same machine.
+    // The default scenario to 20 s, and the scenario matched to the MuJoCo reference run
+    // (../shared/anchors/mujoco/): the samples/s to compare with MuJoCo's, taken right
+    // after it on the same machine. Each in f64 and in f32 lanes.
+    let default = Scenario::from_toml("[simulation]\nt_max_s = 20.0").unwrap();
     let matched = Scenario::from_toml(include_str!("../scenarios/mujoco-matched.toml")).unwrap();
-    let matched_model = Model::new(&matched);
-    let n_matched = 1000;
-    g.throughput(Throughput::Elements(n_matched));
-    g.bench_function("mujoco_matched_scenario", |b| {
-        b.iter(|| {
-            let mut rows = 0;
-            touchdown::sweep::run(&matched, &matched_model, 0..n_matched, 256, |r| {
-                rows += r.len();
-                Ok(())
-            })
-            .unwrap();
-            black_box(rows)
-        });
-    });
+    for (name, scenario, n) in [
+        ("default_scenario_t_max_20s", default, 2000),
+        ("mujoco_matched_scenario", matched, 1000),
+    ] {
+        for precision in Precision::ALL {
+            let mut scenario = scenario.clone();
+            scenario.simulation.precision = precision;
+            let model = Model::new(&scenario);
+            g.throughput(Throughput::Elements(n));
+            let id = match precision {
+                Precision::F64 => name.to_string(),
+                Precision::F32 => format!("{name}_f32"),
+            };
+            g.bench_function(id, |b| {
+                b.iter(|| {
+                    let mut rows = 0;
+                    touchdown::sweep::run(&scenario, &model, 0..n, 256, |r| {
+                        rows += r.len();
+                        Ok(())
+                    })
+                    .unwrap();
+                    black_box(rows)
+                });
+            });
+        }
+    }
     g.finish();
 }
 

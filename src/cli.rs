@@ -8,7 +8,7 @@ use crate::sampling::{self, Sample};
 use crate::scenario::{DEFAULT_TOML, INPUT_FIELDS, Scenario};
 use crate::sweep::Shard;
 use clap::{Parser, Subcommand};
-use kernels::isa::Isa;
+use kernels::isa::{Isa, KernelKind};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -343,6 +343,13 @@ fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
         Some(sweep) => scenario_of_sweep(sweep, args.sample)?,
         None => load_scenario(args.scenario.as_ref(), args.seed)?,
     };
+    if scenario.simulation.precision == kernels::isa::Precision::F32 {
+        eprintln!(
+            "touchdown: note: the scenario's sweeps run in f32 lanes; a trace runs the f64 \
+             reference, whose outcome may differ from a sweep row's near a decision threshold \
+             (13 of 100,000 default samples)"
+        );
+    }
     let model = Model::new(&scenario);
     let sample = sampling::sample(&scenario, args.sample);
     let summary = reference::run(&model, &sample, |_| {});
@@ -391,8 +398,8 @@ struct SweepPlan {
     shard: Option<Shard>,
     format: crate::output::sweep::Format,
     out: PathBuf,
-    /// The kernel it runs with.
-    isa: Isa,
+    /// The kernel it runs with (the precision is the scenario's).
+    kernel: KernelKind,
     /// The interrupted sweep whose first rows this one takes over.
     resume: Option<crate::output::resume::Interrupted>,
 }
@@ -401,21 +408,24 @@ impl SweepPlan {
     fn new(args: &SweepArgs) -> anyhow::Result<SweepPlan> {
         if let Some(out) = &args.resume {
             let from = crate::output::resume::Interrupted::read(out)?;
-            let isa = args.kernel.isa()?;
-            if from.lane_type != isa.arithmetic() {
+            let mut scenario = Scenario::from_toml(&from.scenario_toml)
+                .map_err(|e| anyhow::anyhow!("the scenario of {}: {e}", from.path.display()))?;
+            scenario.seed = from.seed;
+            let kernel = KernelKind {
+                isa: args.kernel.isa()?,
+                precision: scenario.simulation.precision,
+            };
+            if from.lane_type != kernel.arithmetic() {
                 anyhow::bail!(
                     "{} was computed with {} kernels, the {} kernel here is {}, whose rows \
                      differ in the last bits: resume it on a machine like the first, or run \
                      the sweep again",
                     from.path.display(),
                     from.lane_type,
-                    isa.name(),
-                    isa.arithmetic()
+                    kernel.name(),
+                    kernel.arithmetic()
                 );
             }
-            let mut scenario = Scenario::from_toml(&from.scenario_toml)
-                .map_err(|e| anyhow::anyhow!("the scenario of {}: {e}", from.path.display()))?;
-            scenario.seed = from.seed;
             crate::output::check_output_path(out)?;
             return Ok(SweepPlan {
                 scenario,
@@ -424,7 +434,7 @@ impl SweepPlan {
                 shard: from.shard,
                 format: from.format,
                 out: out.clone(),
-                isa,
+                kernel,
                 resume: Some(from),
             });
         }
@@ -434,6 +444,10 @@ impl SweepPlan {
         if samples == 0 {
             anyhow::bail!("--samples must be at least 1");
         }
+        let kernel = KernelKind {
+            isa: args.kernel.isa()?,
+            precision: scenario.simulation.precision,
+        };
         Ok(SweepPlan {
             scenario,
             text,
@@ -441,7 +455,7 @@ impl SweepPlan {
             shard: args.shard,
             format: output_format(&args.out, args.format)?,
             out: args.out.clone(),
-            isa: args.kernel.isa()?,
+            kernel,
             resume: None,
         })
     }
@@ -496,7 +510,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         scenario_toml: &plan.text,
         seed: scenario.seed,
         samples,
-        lane_type: plan.isa.arithmetic(),
+        lane_type: plan.kernel.arithmetic(),
         shard: plan.shard,
     };
     let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?;
@@ -504,8 +518,8 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         "touchdown sweep: {} samples, seed {}, kernel {} ({} landers per block{}), {threads} thread{}{shard_note}{resume_note}",
         range.end - range.start,
         scenario.seed,
-        plan.isa.name(),
-        kernels::lane::LANES,
+        plan.kernel.name(),
+        plan.kernel.precision.lanes(),
         if matches!(args.kernel, KernelChoice::Auto) {
             "; the widest this CPU runs"
         } else {
@@ -549,7 +563,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         crate::sweep::run_until(
             scenario,
             &model,
-            plan.isa,
+            plan.kernel.isa,
             todo.clone(),
             CHUNK,
             &stop,

@@ -14,8 +14,8 @@ use crate::sampling::{self, Sample};
 use crate::scenario::Scenario;
 use glam::{DQuat, DVec3};
 use kernels::block::{Block, LaneInit};
-use kernels::isa::{Isa, Kernel, WithKernel};
-use kernels::lane::{LANES, Lane};
+use kernels::isa::{Kernel, KernelKind, WithKernel};
+use kernels::lane::{Lane, MAX_LANES};
 use kernels::params::{HoneycombParams, LegParams, Params, lane};
 use kernels::vec3::Vec3;
 use rayon::prelude::*;
@@ -175,7 +175,7 @@ pub fn lane_init(model: &Model, sample: &Sample) -> LaneInit {
 
 /// The summary of the sample decided in lane `i` (the reference's `Tracker::finish`).
 fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
-    let at = |l: &L| l.as_array()[i];
+    let at = |l: &L| l.lane(i);
     let t = &block.track;
     let normal = DVec3::from_array(block.surface.normal.lane(i));
     let attitude = DQuat::from_array(block.attitude.lane(i));
@@ -224,7 +224,8 @@ struct Padded<T>(T);
 #[repr(align(128))]
 struct Worker<L> {
     block: Block<L>,
-    samples: [Option<Sample>; LANES],
+    /// The sample of each lane (the first `L::LANES` used).
+    samples: [Option<Sample>; MAX_LANES],
 }
 
 /// Where a worker takes samples from, and when it may stop.
@@ -259,7 +260,7 @@ impl<K: Kernel> Worker<K> {
     fn new(params: &Params<K>) -> Worker<K> {
         Worker {
             block: Block::new(params),
-            samples: [None; LANES],
+            samples: [None; MAX_LANES],
         }
     }
 
@@ -288,7 +289,7 @@ impl<K: Kernel> Worker<K> {
     ) -> (Vec<Row>, LaneStats) {
         let mut rows = Vec::new();
         let mut stats = LaneStats::default();
-        for i in 0..LANES {
+        for i in 0..K::LANES {
             if self.samples[i].is_none() {
                 self.refill(scenario, model, feed, i);
             }
@@ -299,10 +300,10 @@ impl<K: Kernel> Worker<K> {
                 break;
             }
             stats.busy_lane_steps += busy;
-            stats.lane_steps += LANES as u64;
+            stats.lane_steps += K::LANES as u64;
             let decided = K::advance(params, &mut self.block);
             if decided != 0 {
-                for i in 0..LANES {
+                for i in 0..K::LANES {
                     if decided & (1 << i) != 0 {
                         let sample = self.samples[i].expect("a decided lane holds a sample");
                         if sample.index < feed.window_end {
@@ -341,7 +342,8 @@ pub fn run(
     sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
 ) -> anyhow::Result<LaneStats> {
     let never = AtomicUsize::new(0);
-    Ok(run_until(scenario, model, Isa::detect(), range, chunk, &never, sink)?.stats)
+    let isa = kernels::isa::Isa::detect();
+    Ok(run_until(scenario, model, isa, range, chunk, &never, sink)?.stats)
 }
 
 /// `run` with the kernel of `isa` (which this CPU must have), until `stop` becomes nonzero:
@@ -356,13 +358,17 @@ pub fn run(
 pub fn run_until(
     scenario: &Scenario,
     model: &Model,
-    isa: Isa,
+    isa: kernels::isa::Isa,
     range: Range<u64>,
     chunk: u64,
     stop: &AtomicUsize,
     sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
 ) -> anyhow::Result<Ran> {
-    isa.dispatch(Sweep {
+    KernelKind {
+        isa,
+        precision: scenario.simulation.precision,
+    }
+    .dispatch(Sweep {
         scenario,
         model,
         range,
@@ -467,9 +473,9 @@ impl<F: FnMut(Vec<Row>) -> anyhow::Result<()>> WithKernel for Sweep<'_, F> {
 
 #[cfg(test)]
 mod tests {
-    use super::{LANES, Model, Outcome, Scenario, Shard, kernel_params, lane_init, lane_summary};
+    use super::{Model, Outcome, Scenario, Shard, kernel_params, lane_init, lane_summary};
     use kernels::block::Block;
-    use kernels::isa::{Isa, Kernel, WithKernel};
+    use kernels::isa::{Isa, Kernel, KernelKind, Precision, WithKernel};
 
     /// A lane whose state turns non-finite mid-flight ends at once as `diverged`, with
     /// finite numbers in every result, and the lanes beside it go on untouched; with every
@@ -484,7 +490,9 @@ mod tests {
             }
         }
         for isa in Isa::ALL.into_iter().filter(|i| i.available()) {
-            isa.dispatch(Poisoned);
+            for precision in Precision::ALL {
+                KernelKind { isa, precision }.dispatch(Poisoned);
+            }
         }
     }
 
@@ -495,22 +503,22 @@ mod tests {
         type Poison<K> = fn(&mut Block<K>, usize);
         let poisons: [(&str, Poison<K>); 4] = [
             ("velocity NaN", |b, i| {
-                b.velocity_m_s.x.as_mut_array()[i] = f64::NAN;
+                b.velocity_m_s.x.set_lane(i, f64::NAN);
             }),
             ("position infinite", |b, i| {
-                b.position_m.z.as_mut_array()[i] = f64::INFINITY;
+                b.position_m.z.set_lane(i, f64::INFINITY);
             }),
             ("body rate NaN", |b, i| {
-                b.rate_rad_s.y.as_mut_array()[i] = f64::NAN;
+                b.rate_rad_s.y.set_lane(i, f64::NAN);
             }),
             ("attitude NaN", |b, i| {
-                b.attitude.w.as_mut_array()[i] = f64::NAN;
+                b.attitude.w.set_lane(i, f64::NAN);
             }),
         ];
         for (what, poison) in poisons {
             let what = format!("{}: {what}", K::NAME);
             let mut block = Block::new(&params);
-            for i in 0..LANES {
+            for i in 0..K::LANES {
                 let sample = crate::sampling::sample(&scenario, i as u64);
                 block.load(i, &lane_init(&model, &sample));
             }

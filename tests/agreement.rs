@@ -1,18 +1,19 @@
 //! Every sample of a batched (SIMD) run against the same sample run alone by the scalar
 //! reference (MODEL.md section 12, last check), over several scenarios, with every kernel
-//! this CPU runs; and the kernels that fuse their multiply-adds (AVX-512, AVX2) against each
-//! other, bit for bit.
+//! this CPU runs in f64 and in f32 lanes; and the kernels of one precision that fuse their
+//! multiply-adds (AVX-512, AVX2) against each other, bit for bit.
 //!
 //! The kernels compute the same formulas in the same order, but not with the same rounding
 //! (fused multiply-adds, another association of sums). A touchdown is chaotic, mostly
 //! through its bounces, so differences of 1e-16 can grow; a sample whose outcome is
 //! decided by a hair may then be decided the other way. Such disagreements are counted
 //! and each one must be explained: the reference itself, nudged by one part in 1e9 of its
-//! touchdown speed, must be able to reach the kernel's outcome, or both must have been
+//! touchdown speed (f64 lanes; up to one part in 1e6 for f32 lanes, whose rounding is 2^29
+//! times coarser), must be able to reach the kernel's outcome, or both must have been
 //! classified at t_max (from states that rounding moved apart). Continuous
 //! results of agreeing samples must agree within the tolerances below.
 
-use kernels::isa::Isa;
+use kernels::isa::{Isa, KernelKind, Precision};
 use std::sync::atomic::AtomicUsize;
 use touchdown::reference::{self, Model, Outcome, Summary};
 use touchdown::sampling::{self, Sample};
@@ -21,20 +22,39 @@ use touchdown::sweep;
 
 /// Runs `n` samples through the reference and through every kernel this CPU has; returns,
 /// per kernel, (samples, outcome disagreements, unexplained, drifted). Kernels that fuse
-/// their multiply-adds must give the same rows, bit for bit.
-fn compare(name: &str, scenario: &Scenario, n: u64) -> Vec<(Isa, [u64; 4])> {
+/// their multiply-adds must give the same rows in each precision, bit for bit.
+fn compare(name: &str, scenario: &Scenario, n: u64) -> Vec<(KernelKind, [u64; 4])> {
     let model = Model::new(scenario);
     let samples: Vec<Sample> = (0..n).map(|i| sampling::sample(scenario, i)).collect();
     let reference: Vec<Summary> = samples
         .iter()
         .map(|s| reference::run(&model, s, |_| {}))
         .collect();
-    let mut fused_rows: Option<(Isa, Vec<String>)> = None;
     let mut out = Vec::new();
+    for precision in Precision::ALL {
+        let mut scenario = scenario.clone();
+        scenario.simulation.precision = precision;
+        compare_kernels(name, &scenario, &model, &samples, &reference, &mut out);
+    }
+    out
+}
+
+/// `compare` in the precision of `scenario`.
+fn compare_kernels(
+    name: &str,
+    scenario: &Scenario,
+    model: &Model,
+    samples: &[Sample],
+    reference: &[Summary],
+    out: &mut Vec<(KernelKind, [u64; 4])>,
+) {
+    let n = samples.len() as u64;
+    let precision = scenario.simulation.precision;
+    let mut fused_rows: Option<(Isa, Vec<String>)> = None;
     for isa in Isa::ALL.into_iter().filter(|i| i.available()) {
         let mut rows = Vec::new();
         let never = AtomicUsize::new(0);
-        sweep::run_until(scenario, &model, isa, 0..n, 256, &never, |r| {
+        sweep::run_until(scenario, model, isa, 0..n, 256, &never, |r| {
             rows.extend(r);
             Ok(())
         })
@@ -49,18 +69,19 @@ fn compare(name: &str, scenario: &Scenario, n: u64) -> Vec<(Isa, [u64; 4])> {
                     assert_eq!(
                         differ,
                         0,
-                        "{name}: {} rows of the {} kernel differ from the {} kernel's",
+                        "{name}: {} rows of the {} {} kernel differ from the {} kernel's",
                         differ,
                         isa.key(),
+                        precision.key(),
                         first.key()
                     );
                 }
             }
         }
-        let name = format!("{name}, kernel {}", isa.key());
+        let name = format!("{name}, kernel {} {}", isa.key(), precision.key());
         let (mut disagree, mut unexplained, mut drifted) = (0, 0, 0);
         let mut worst = [0.0f64; 4];
-        for (i, (row, r)) in rows.iter().zip(&reference).enumerate() {
+        for (i, (row, r)) in rows.iter().zip(reference).enumerate() {
             assert_eq!(row.sample.index, i as u64, "{name}: rows in sample order");
             let k = &row.summary;
             if r.outcome != k.outcome {
@@ -69,7 +90,8 @@ fn compare(name: &str, scenario: &Scenario, n: u64) -> Vec<(Isa, [u64; 4])> {
                 // hopping at 20 s touches at the last step or not, starts a rest or not):
                 // the end of the run is the boundary.
                 let at_t_max = r.decided_s >= model.t_max_s && k.decided_s >= model.t_max_s;
-                let explained = at_t_max || near_threshold(&model, &row.sample, k.outcome);
+                let explained =
+                    at_t_max || near_threshold(model, precision, &row.sample, r, k.outcome);
                 if !explained {
                     unexplained += 1;
                 }
@@ -95,18 +117,55 @@ fn compare(name: &str, scenario: &Scenario, n: u64) -> Vec<(Isa, [u64; 4])> {
             "{name}: {n} samples, {disagree} outcome disagreements ({unexplained} unexplained), {drifted} drifted; worst agreeing |diff|: decided {:.2e} s, max tilt {:.2e} deg, peak accel {:.2e} (relative), stroke {:.2e} m",
             worst[0], worst[1], worst[2], worst[3]
         );
-        out.push((isa, [n, disagree, unexplained, drifted]));
+        out.push((isa.kernel(precision), [n, disagree, unexplained, drifted]));
     }
-    out
 }
 
-/// Whether the reference, nudged slightly, can reach `other` too.
-fn near_threshold(model: &Model, sample: &Sample, other: Outcome) -> bool {
-    [-1e-9, 1e-9, -1e-8, 1e-8].iter().any(|nudge| {
-        let mut s = *sample;
-        s.inputs.release_height_m *= 1.0 + nudge;
-        reference::run(model, &s, |_| {}).outcome == other
-    })
+/// Whether the reference, nudged slightly, can reach `other` too: by up to 1e-8 of the
+/// release height for f64 lanes; for f32 lanes, which round to 6e-8 and add up many such
+/// roundings over the thousands of steps of a chaotic touchdown, by up to 1e-4 (0.5 mm of a
+/// 5 m release height, against a sampled spread of 5 m), and the initial roll or pitch by
+/// up to 1e-4 deg (against a sampled spread of 2 deg): a lander pivoting on one leg near
+/// its tipping point for seconds tips or not by a nudge of attitude where one of height
+/// does not (measured: MuJoCo-matched samples 672 and 684). For f32, a sample the reference
+/// leaves undecided at t_max (still hopping or creeping) counts as well when its nudged
+/// runs end in more than one way: its outcome is a matter of rounding.
+fn near_threshold(
+    model: &Model,
+    precision: Precision,
+    sample: &Sample,
+    reference: &Summary,
+    other: Outcome,
+) -> bool {
+    let nudges: &[f64] = match precision {
+        Precision::F64 => &[-1e-9, 1e-9, -1e-8, 1e-8],
+        Precision::F32 => &[
+            -1e-9, 1e-9, -1e-8, 1e-8, -1e-7, 1e-7, -1e-6, 1e-6, -3e-6, 3e-6, -1e-5, 1e-5, -3e-5,
+            3e-5, -1e-4, 1e-4,
+        ],
+    };
+    let mut seen = vec![reference.outcome];
+    // Nudges of the release height; for f32, of the initial roll and pitch too (by the
+    // same fraction of a degree).
+    let nudged = nudges.iter().flat_map(|&nudge| {
+        let mut height = *sample;
+        height.inputs.release_height_m *= 1.0 + nudge;
+        let (mut roll, mut pitch) = (*sample, *sample);
+        roll.inputs.roll_deg += nudge;
+        pitch.inputs.pitch_deg += nudge;
+        let attitude = (precision == Precision::F32).then_some([roll, pitch]);
+        std::iter::once(height).chain(attitude.into_iter().flatten())
+    });
+    for s in nudged {
+        let outcome = reference::run(model, &s, |_| {}).outcome;
+        if outcome == other {
+            return true;
+        }
+        if !seen.contains(&outcome) {
+            seen.push(outcome);
+        }
+    }
+    precision == Precision::F32 && reference.decided_s >= model.t_max_s && seen.len() > 1
 }
 
 /// Tolerances for samples with the same outcome. The first contact ends a ballistic arc,
@@ -186,7 +245,7 @@ fn kernels_agree_with_the_reference() {
             1000,
         ),
     ];
-    let mut totals: Vec<(Isa, [u64; 4])> = Vec::new();
+    let mut totals: Vec<(KernelKind, [u64; 4])> = Vec::new();
     for (name, s, n) in &cases {
         for (isa, counts) in compare(name, s, *n) {
             match totals.iter_mut().find(|(i, _)| *i == isa) {
@@ -195,14 +254,23 @@ fn kernels_agree_with_the_reference() {
             }
         }
     }
-    for (isa, [total, disagree, unexplained, drifted]) in totals {
-        let isa = isa.key();
+    for (kernel, [total, disagree, unexplained, drifted]) in totals {
+        let isa = kernel.name();
         println!(
             "kernel {isa}: {total} samples, {disagree} disagreements, {unexplained} unexplained, {drifted} drifted"
         );
+        // f64 lanes round as the reference does, up to the order of sums: few samples
+        // drift. f32 lanes round 2^29 times coarser, and a lander's bounces amplify it:
+        // measured 3.7 % (256 of 7000) drift in f32, in all three instruction sets alike.
+        // A defect of the f32 lanes (a constant rounded to 0, a threshold lost) shifts
+        // results in most samples that meet it, not a few percent.
+        let limit = match kernel.precision {
+            Precision::F64 => 50,
+            Precision::F32 => 20,
+        };
         assert!(
-            drifted * 50 <= total,
-            "kernel {isa}: {drifted} of {total} samples drifted: more than 2 %"
+            drifted * limit <= total,
+            "kernel {isa}: {drifted} of {total} samples drifted: more than 1/{limit}"
         );
         assert_eq!(
             unexplained, 0,

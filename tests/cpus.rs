@@ -5,7 +5,7 @@
 //! and one without AVX (Nehalem) with the outcome counts of this machine.
 
 use crate::common::{SHORT, TempDir, read_bytes, touchdown};
-use kernels::isa::Isa;
+use kernels::isa::{Isa, Precision};
 use std::io::Write;
 use std::process::Command;
 
@@ -57,7 +57,11 @@ fn each_kernel_this_cpu_runs_can_be_chosen_and_fused_ones_write_the_same_file() 
             continue;
         }
         assert_eq!(run.code, Some(0), "{run}");
-        assert_eq!(banner_kernel(&run.stderr), isa.name(), "{run}");
+        assert_eq!(
+            banner_kernel(&run.stderr),
+            isa.kernel(Precision::F64).name(),
+            "{run}"
+        );
         if isa.fused() {
             let bytes = read_bytes(&dir.join(&out));
             match &fused_file {
@@ -72,7 +76,11 @@ fn each_kernel_this_cpu_runs_can_be_chosen_and_fused_ones_write_the_same_file() 
         }
     }
     let auto = touchdown(dir.path(), &["sweep", "--samples", "8", "--quiet"]);
-    assert_eq!(banner_kernel(&auto.stderr), Isa::detect().name(), "{auto}");
+    assert_eq!(
+        banner_kernel(&auto.stderr),
+        Isa::detect().kernel(Precision::F64).name(),
+        "{auto}"
+    );
     let bad = touchdown(dir.path(), &["sweep", "--kernel", "sse9"]);
     assert_eq!(bad.code, Some(2), "{bad}");
     assert!(
@@ -145,8 +153,8 @@ fn the_binary_runs_on_cpus_without_avx512_and_without_avx() {
     let (haswell_kernel, haswell) = sweep(&["qemu-x86_64", "-cpu", "Haswell"], "haswell.arrow");
     let (nehalem_kernel, nehalem) = sweep(&["qemu-x86_64", "-cpu", "Nehalem"], "nehalem.arrow");
     println!("native {native_kernel}, Haswell {haswell_kernel}, Nehalem {nehalem_kernel}");
-    assert_eq!(haswell_kernel, Isa::Avx2.name());
-    assert_eq!(nehalem_kernel, Isa::Portable.name());
+    assert_eq!(haswell_kernel, Isa::Avx2.kernel(Precision::F64).name());
+    assert_eq!(nehalem_kernel, Isa::Portable.kernel(Precision::F64).name());
     assert_eq!(haswell, native, "outcomes on an emulated Haswell");
     assert_eq!(nehalem, native, "outcomes on an emulated Nehalem");
     if Isa::detect().fused() {

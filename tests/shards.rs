@@ -259,3 +259,95 @@ fn merge_refuses_shards_that_do_not_belong_together() {
         ],
     );
 }
+
+/// f32 lanes: the same sweep with 1 and 2 threads, and as 3 shards merged, gives one file
+/// byte for byte; the file records its f32 arithmetic, and a merge of an f32 shard with an
+/// f64 shard of the same samples is refused.
+#[test]
+fn f32_sweeps_repeat_byte_for_byte_over_threads_and_shards() {
+    let dir = TempDir::new("shards-f32");
+    dir.write(
+        "s32.toml",
+        "[simulation]\nt_max_s = 5.0\nprecision = \"f32\"\n",
+    );
+    dir.write("s64.toml", SHORT);
+    // More than a thread's window (4 x 1024 samples), so that threads share windows.
+    let base = |scenario: &'static str| {
+        [
+            "sweep",
+            "--scenario",
+            scenario,
+            "--samples",
+            "20000",
+            "--quiet",
+        ]
+    };
+    let one = ok(
+        &dir,
+        &[
+            &base("s32.toml")[..],
+            &["--threads", "1", "--out", "t1.arrow"],
+        ]
+        .concat(),
+    );
+    ok(
+        &dir,
+        &[
+            &base("s32.toml")[..],
+            &["--threads", "2", "--out", "t2.arrow"],
+        ]
+        .concat(),
+    );
+    assert!(
+        read_bytes(&dir.join("t1.arrow")) == read_bytes(&dir.join("t2.arrow")),
+        "f32: --threads 1 and --threads 2 wrote different files"
+    );
+    let bytes = read_bytes(&dir.join("t1.arrow"));
+    assert!(
+        bytes.windows(10).any(|w| w == b"f32x16-fma")
+            || bytes.windows(12).any(|w| w == b"f32x16-nofma"),
+        "the file records f32 arithmetic"
+    );
+    assert!(!outcome_counts(&one).is_empty(), "outcome counts in {one}");
+    for k in 0..3 {
+        let (shard, out) = (format!("{k}/3"), format!("s{k}.arrow"));
+        ok(
+            &dir,
+            &[&base("s32.toml")[..], &["--shard", &shard, "--out", &out]].concat(),
+        );
+    }
+    ok(
+        &dir,
+        &[
+            "merge", "s1.arrow", "s2.arrow", "s0.arrow", "--out", "m.arrow",
+        ],
+    );
+    assert!(
+        read_bytes(&dir.join("m.arrow")) == read_bytes(&dir.join("t1.arrow")),
+        "f32: the merged shards differ from the sweep run in one process"
+    );
+    // Shard 1 of the same samples in f64: not part of the f32 sweep.
+    ok(
+        &dir,
+        &[
+            &base("s64.toml")[..],
+            &["--shard", "1/3", "--out", "f1.arrow"],
+        ]
+        .concat(),
+    );
+    let run = touchdown(
+        dir.path(),
+        &[
+            "merge", "s0.arrow", "f1.arrow", "s2.arrow", "--out", "x.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(2), "mixed precisions refused: {run}");
+    assert!(
+        run.stderr.contains("f32x16"),
+        "the refusal names the precisions: {run}"
+    );
+    assert!(
+        !dir.join("x.arrow").exists(),
+        "no file from a refused merge"
+    );
+}

@@ -1,7 +1,7 @@
-//! The state of `LANES` landers, field per field (structure of arrays), with the surface
+//! The state of `L::LANES` landers, field per field (structure of arrays), with the surface
 //! each lane lands on and what its outcome tracking remembers.
 
-use crate::lane::{LANES, Lane, all_false};
+use crate::lane::{Lane, MAX_LANES, all_false};
 use crate::params::{Params, lane};
 use crate::vec3::{Mat3, Quat, Vec3, mat3_of};
 
@@ -48,7 +48,8 @@ pub struct SurfaceLanes<L> {
     pub tangent_v: Vec3<L>,
     pub offset_u_m: L,
     pub offset_v_m: L,
-    pub tile: [usize; LANES],
+    /// The terrain tile of each lane (the first `L::LANES` used).
+    pub tile: [usize; MAX_LANES],
 }
 
 /// What the outcome tracking remembers, per lane.
@@ -78,6 +79,8 @@ pub struct Track<L> {
 #[allow(missing_docs)]
 pub struct Block<L> {
     pub t_s: L,
+    /// What rounding has dropped from `t_s` so far (see `step::add_time`).
+    pub t_error_s: L,
     pub position_m: Vec3<L>,
     pub velocity_m_s: Vec3<L>,
     pub attitude: Quat<L>,
@@ -150,6 +153,7 @@ impl<L: Lane> Block<L> {
         };
         Block {
             t_s: zero,
+            t_error_s: zero,
             position_m: Vec3::ZERO,
             velocity_m_s: Vec3::ZERO,
             attitude: identity,
@@ -166,7 +170,7 @@ impl<L: Lane> Block<L> {
                 tangent_v: Vec3::splat([0.0, 1.0, 0.0]),
                 offset_u_m: zero,
                 offset_v_m: zero,
-                tile: [0; LANES],
+                tile: [0; MAX_LANES],
             },
             track: Track {
                 start_m: Vec3::ZERO,
@@ -196,8 +200,9 @@ impl<L: Lane> Block<L> {
 
     /// Puts a new sample into lane `i`.
     pub fn load(&mut self, i: usize, init: &LaneInit) {
-        let set = |l: &mut L, x: f64| l.as_mut_array()[i] = x;
+        let set = |l: &mut L, x: f64| l.set_lane(i, x);
         set(&mut self.t_s, 0.0);
+        set(&mut self.t_error_s, 0.0);
         self.position_m.set_lane(i, init.position_m);
         self.velocity_m_s.set_lane(i, init.velocity_m_s);
         self.attitude.set_lane(i, init.attitude);
@@ -207,7 +212,7 @@ impl<L: Lane> Block<L> {
             set(&mut leg.stroke_m, 0.0);
             set(&mut leg.absorbed_j, 0.0);
             leg.anchor_m.set_lane(i, [0.0; 3]);
-            set(&mut leg.anchored, 0.0);
+            leg.anchored.set_mask_lane(i, false);
             leg.rest_anchor_m.set_lane(i, [0.0; 3]);
             set(&mut leg.peak_normal_n, 0.0);
         }
@@ -225,26 +230,24 @@ impl<L: Lane> Block<L> {
         set(&mut t.peak_acceleration_squared, 0.0);
         set(&mut t.peak_acceleration_z, 0.0);
         set(&mut t.bounces, 0.0);
-        set(&mut t.touched, 0.0);
+        t.touched.set_mask_lane(i, false);
         set(&mut t.first_contact_s, f64::NAN);
         set(&mut t.max_penetration, 0.0);
         set(&mut t.steps, 0.0);
         set(&mut t.outcome, -1.0);
-        set(&mut self.active, f64::from_bits(u64::MAX));
+        self.active.set_mask_lane(i, true);
     }
 
     /// Number of lanes holding a sample (read through memory, outside the kernels).
     #[must_use]
     pub fn busy_lanes(&self) -> usize {
-        self.active
-            .as_array()
-            .iter()
-            .filter(|m| m.to_bits() != 0)
+        (0..L::LANES)
+            .filter(|&i| self.active.lane(i).to_bits() != 0)
             .count()
     }
 
     /// Empties lane `i`: it takes no more steps and decides nothing.
     pub fn retire(&mut self, i: usize) {
-        self.active.as_mut_array()[i] = 0.0;
+        self.active.set_mask_lane(i, false);
     }
 }

@@ -52,7 +52,7 @@ pub fn leg_force<L: Lane>(
     if let Some(h) = &p.honeycomb {
         let cap = p.friction_coefficient * normal_n;
         let friction_now =
-            friction * (cap / friction.length().max(cap).max(L::splat(f64::MIN_POSITIVE)));
+            friction * (cap / friction.length().max(cap).max(L::splat(L::MIN_POSITIVE)));
         let load_n = (normal * normal_n + friction_now).dot(strut_up);
         let relief = p.stiffness_n_per_m + p.damping_n_s_per_m / dt;
         let (ds, relieved) = honeycomb::crush(

@@ -1,13 +1,16 @@
-//! What a lane type must do: eight f64 landers side by side, with the arithmetic, masks and
-//! comparisons the kernels use. Every kernel is written once over `L: Lane`; `isa` has the
-//! lane types (AVX-512, AVX2 with FMA, and a portable one) and picks one at run time.
+//! What a lane type must do: `LANES` landers side by side (eight in f64, sixteen in f32),
+//! with the arithmetic, masks and comparisons the kernels use. Every kernel is written once
+//! over `L: Lane`; `isa` has the lane types (AVX-512, AVX2 with FMA, and a portable one, in
+//! f64 and f32) and picks one at run time.
 //!
 //! A mask is a lane value with every bit of a lane set (true) or clear (false), as
 //! comparisons return it; `select`, `&`, `|` and `!` work on masks.
 //!
-//! Every lane type computes each lane as IEEE 754 double arithmetic does: `+ - * /` and
-//! `sqrt` correctly rounded, the multiply-adds fused (rounded once) where the CPU has FMA.
-//! So the AVX-512 and AVX2 lane types give the same bits, and a sweep the same file.
+//! Every lane type computes each lane as IEEE 754 arithmetic of its precision does: `+ - * /`
+//! and `sqrt` correctly rounded, the multiply-adds fused (rounded once) where the CPU has
+//! FMA. So the AVX-512 and AVX2 lane types of one precision give the same bits, and a sweep
+//! the same file. Values cross the lane type's boundary as f64 (`splat`, `lane`,
+//! `set_lane`), rounded to nearest on the way in for f32.
 
 use std::fmt::Debug;
 use std::ops::{
@@ -15,10 +18,11 @@ use std::ops::{
     SubAssign,
 };
 
-/// Number of landers a lane value holds.
-pub const LANES: usize = 8;
+/// The most landers a lane value holds (of any lane type): the size of the per-lane arrays
+/// kept beside a block.
+pub const MAX_LANES: usize = 16;
 
-/// Eight f64 landers side by side. Implementations are `#[inline(always)]` throughout: the
+/// `LANES` landers side by side. Implementations are `#[inline(always)]` throughout: the
 /// kernels are compiled inside one function per instruction set (see `isa`), and anything
 /// not inlined there would lose that instruction set.
 pub trait Lane:
@@ -42,18 +46,20 @@ pub trait Lane:
     + Sync
     + 'static
 {
+    /// Number of landers a value holds (at most `MAX_LANES`).
+    const LANES: usize;
     /// Every lane 0.
     const ZERO: Self;
-    /// Every lane `x`.
+    /// The least positive normal number of the lanes' precision.
+    const MIN_POSITIVE: f64;
+    /// Every lane `x` (rounded to the lanes' precision).
     fn splat(x: f64) -> Self;
-    /// From eight values.
-    fn from_array(a: [f64; LANES]) -> Self;
-    /// The eight values.
-    fn to_array(self) -> [f64; LANES];
-    /// The eight values, in place.
-    fn as_array(&self) -> &[f64; LANES];
-    /// The eight values, in place, to change.
-    fn as_mut_array(&mut self) -> &mut [f64; LANES];
+    /// Lane `i`, outside the kernels (through memory).
+    fn lane(&self, i: usize) -> f64;
+    /// Sets lane `i` to `x` (rounded to the lanes' precision), outside the kernels.
+    fn set_lane(&mut self, i: usize, x: f64);
+    /// Sets lane `i` of the mask `self` to `on`, outside the kernels.
+    fn set_mask_lane(&mut self, i: usize, on: bool);
 
     /// `self * a + b`, fused where the CPU has FMA.
     #[must_use]
@@ -117,22 +123,6 @@ pub fn all_true<L: Lane>() -> L {
 #[must_use]
 pub fn all_false<L: Lane>() -> L {
     L::ZERO
-}
-
-/// A mask from booleans.
-#[inline]
-#[must_use]
-pub fn mask_from<L: Lane>(b: [bool; LANES]) -> L {
-    let t = f64::from_bits(u64::MAX);
-    L::from_array(b.map(|x| if x { t } else { 0.0 }))
-}
-
-/// The lanes of a mask as booleans.
-#[inline]
-#[must_use]
-pub fn mask_to<L: Lane>(m: L) -> [bool; LANES] {
-    let bits = m.to_bitmask();
-    std::array::from_fn(|i| bits & (1 << i) != 0)
 }
 
 /// `acc.max(x)` for an accumulator `acc` that is never NaN: lanes where `x` is NaN keep

@@ -1,6 +1,6 @@
 //! Parameters of a sweep, broadcast to lanes once so that the step loads nothing twice.
 
-use crate::lane::{LANES, Lane};
+use crate::lane::Lane;
 use crate::terrain::Terrain;
 use crate::vec3::Vec3;
 
@@ -101,5 +101,9 @@ pub struct Params<L> {
 #[inline]
 #[must_use]
 pub fn lane<L: Lane>(x: f64) -> L {
-    L::from_array([x; LANES])
+    let mut l = L::ZERO;
+    for i in 0..L::LANES {
+        l.set_lane(i, x);
+    }
+    l
 }

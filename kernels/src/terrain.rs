@@ -5,7 +5,7 @@
 //! stays on the tile. The tiles are built once per sweep (by the `touchdown` crate, which
 //! owns the random numbers) and shared read-only by every lane.
 
-use crate::lane::{LANES, Lane};
+use crate::lane::{Lane, MAX_LANES};
 
 /// Precomputed terrain tiles.
 #[derive(Debug, Clone, PartialEq)]
@@ -103,15 +103,20 @@ impl Terrain {
 /// nodes of different lanes are far apart in memory, so a gather is all SIMD could do).
 #[inline(always)]
 #[must_use]
-pub fn height_lanes<L: Lane>(terrain: &Terrain, tile: &[usize; LANES], u: L, v: L) -> (L, L, L) {
-    let (u, v) = (u.to_array(), v.to_array());
-    let mut h = [0.0; LANES];
-    let mut du = [0.0; LANES];
-    let mut dv = [0.0; LANES];
-    for i in 0..LANES {
-        (h[i], du[i], dv[i]) = terrain.height(tile[i], u[i], v[i]);
+pub fn height_lanes<L: Lane>(
+    terrain: &Terrain,
+    tile: &[usize; MAX_LANES],
+    u: L,
+    v: L,
+) -> (L, L, L) {
+    let (mut h, mut du, mut dv) = (L::ZERO, L::ZERO, L::ZERO);
+    for (i, &tile) in tile.iter().enumerate().take(L::LANES) {
+        let (hi, dui, dvi) = terrain.height(tile, u.lane(i), v.lane(i));
+        h.set_lane(i, hi);
+        du.set_lane(i, dui);
+        dv.set_lane(i, dvi);
     }
-    (L::from_array(h), L::from_array(du), L::from_array(dv))
+    (h, du, dv)
 }
 
 #[cfg(test)]

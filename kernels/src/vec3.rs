@@ -114,19 +114,15 @@ impl<L: Lane> Vec3<L> {
     #[inline]
     #[must_use]
     pub fn lane(&self, i: usize) -> [f64; 3] {
-        [
-            self.x.as_array()[i],
-            self.y.as_array()[i],
-            self.z.as_array()[i],
-        ]
+        [self.x.lane(i), self.y.lane(i), self.z.lane(i)]
     }
 
     /// Sets one lane.
     #[inline]
     pub fn set_lane(&mut self, i: usize, v: [f64; 3]) {
-        self.x.as_mut_array()[i] = v[0];
-        self.y.as_mut_array()[i] = v[1];
-        self.z.as_mut_array()[i] = v[2];
+        self.x.set_lane(i, v[0]);
+        self.y.set_lane(i, v[1]);
+        self.z.set_lane(i, v[2]);
     }
 }
 
@@ -279,20 +275,20 @@ impl<L: Lane> Quat<L> {
     #[must_use]
     pub fn lane(&self, i: usize) -> [f64; 4] {
         [
-            self.x.as_array()[i],
-            self.y.as_array()[i],
-            self.z.as_array()[i],
-            self.w.as_array()[i],
+            self.x.lane(i),
+            self.y.lane(i),
+            self.z.lane(i),
+            self.w.lane(i),
         ]
     }
 
     /// Sets one lane from `[x, y, z, w]`.
     #[inline]
     pub fn set_lane(&mut self, i: usize, q: [f64; 4]) {
-        self.x.as_mut_array()[i] = q[0];
-        self.y.as_mut_array()[i] = q[1];
-        self.z.as_mut_array()[i] = q[2];
-        self.w.as_mut_array()[i] = q[3];
+        self.x.set_lane(i, q[0]);
+        self.y.set_lane(i, q[1]);
+        self.z.set_lane(i, q[2]);
+        self.w.set_lane(i, q[3]);
     }
 }
 

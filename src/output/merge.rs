@@ -19,7 +19,7 @@ const SHARED_KEYS: [(&str, &str); 6] = [
     ("touchdown.engine", "engine version"),
     (
         "touchdown.lane_type",
-        "kernel arithmetic (f64x8-fma or f64x8-nofma)",
+        "kernel arithmetic (f64x8-fma, f64x8-nofma, f32x16-fma or f32x16-nofma)",
     ),
     ("touchdown.seed", "seed"),
     ("touchdown.samples", "sample count"),

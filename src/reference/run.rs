@@ -48,6 +48,7 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
         .fold(f64::NEG_INFINITY, f64::max);
     State {
         t_s: 0.0,
+        t_error_s: 0.0,
         body: Body {
             position_m: surface.normal * (lift + model.clearance_m),
             velocity_m_s: velocity,

@@ -7,6 +7,7 @@
 
 mod reader;
 
+use kernels::isa::Precision;
 use reader::Reader;
 use std::fmt;
 use toml::Value;
@@ -313,6 +314,10 @@ pub struct Simulation {
     /// Longest step in free flight, taken only where no leg can reach the surface in it.
     pub flight_step_max_s: f64,
     pub t_max_s: f64,
+    /// The lanes' precision: f64 (eight landers per lane value) or f32 (sixteen, faster;
+    /// the shares a sweep reports agree with f64's within their sampling error, single
+    /// samples near a decision threshold may end otherwise).
+    pub precision: Precision,
 }
 
 /// Thresholds of the outcome classification (MODEL.md section 8).
@@ -434,6 +439,7 @@ impl Default for Scenario {
             simulation: Simulation {
                 step_s: 0.001,
                 flight_step_max_s: 0.05,
+                precision: Precision::F64,
                 t_max_s: 120.0,
             },
             outcome: Outcome {
@@ -1095,11 +1101,15 @@ fn read_simulation(top: &mut Reader, d: &Simulation) -> Result<Simulation, Scena
         &format!("a time of at least step_s = {step_s} s and at most 1e6 s"),
         |x| x >= step_s && x <= 1e6,
     )?;
+    let keys: Vec<&str> = Precision::ALL.iter().map(|p| p.key()).collect();
+    let precision = Precision::from_key(r.word("precision", d.precision.key(), &keys)?)
+        .unwrap_or(Precision::F64);
     r.finish()?;
     Ok(Simulation {
         step_s,
         flight_step_max_s,
         t_max_s,
+        precision,
     })
 }
 

@@ -1,178 +1,234 @@
-//! Eight f64 landers in two AVX2 registers, multiply-adds fused (FMA3).
+//! Two AVX2 registers of landers, multiply-adds fused (FMA3): eight in f64 (`F64x8Avx2`),
+//! sixteen in f32 (`F32x16Avx2`). Both lane types come from one macro, so they are the same
+//! code over the two precisions.
 
-use super::Kernel;
-use crate::block::Block;
-use crate::lane::{LANES, Lane};
-use crate::params::Params;
-use std::arch::x86_64::*;
-use std::ops::{
-    Add, AddAssign, BitAnd, BitAndAssign, BitOr, BitOrAssign, Div, Mul, MulAssign, Neg, Not, Sub,
-    SubAssign,
-};
-
-/// Eight f64 lanes in two `__m256d`. Only made on a CPU with the features of `FEATURES`.
-#[derive(Clone, Copy)]
-#[repr(C, align(64))]
-pub struct F64x8Avx2([__m256d; 2]);
-
-// What the kernel is compiled for: x86-64-v3 (the same list as `compiled_kernel!` below).
+// What the kernels are compiled for: x86-64-v3 (the same list as `compiled_kernel!` below).
 x86_features!(
     "avx2", "avx", "fma", "bmi1", "bmi2", "lzcnt", "movbe", "popcnt", "f16c"
 );
 
-compiled_kernel!(
-    F64x8Avx2,
-    "f64x8 AVX2",
-    "avx2,avx,fma,bmi1,bmi2,lzcnt,movbe,popcnt,f16c"
-);
+/// The lane type `$lane` of `$n` lanes of `$e` in two registers `$v`, with the intrinsics
+/// of its precision.
+macro_rules! avx2_lane {
+    (
+        $(#[$doc:meta])* $lane:ident, $name:literal, $v:ty, $e:ty, $n:literal,
+        movemask $movemask:ident,
+        add $add:ident, sub $sub:ident, mul $mul:ident, div $div:ident, and $and:ident,
+        or $or:ident, xor $xor:ident, andnot $andnot:ident, fmadd $fmadd:ident,
+        fmsub $fmsub:ident, fnmadd $fnmadd:ident, fnmsub $fnmsub:ident, sqrt $sqrt:ident,
+        min $min:ident, max $max:ident, cmp $cmp:ident, blendv $blendv:ident
+    ) => {
+        use crate::isa::Kernel;
+        use crate::block::Block;
+        use crate::lane::Lane;
+        use crate::params::Params;
+        use std::arch::x86_64::*;
+        use std::ops::{
+            Add, AddAssign, BitAnd, BitAndAssign, BitOr, BitOrAssign, Div, Mul, MulAssign, Neg,
+            Not, Sub, SubAssign,
+        };
 
-/// Applies a two-operand intrinsic to both halves.
-macro_rules! halves {
-    ($f:path, $a:expr, $b:expr) => {
-        F64x8Avx2(unsafe { [$f($a.0[0], $b.0[0]), $f($a.0[1], $b.0[1])] })
-    };
-    ($f:path, $a:expr, $b:expr, $c:expr) => {
-        F64x8Avx2(unsafe { [$f($a.0[0], $b.0[0], $c.0[0]), $f($a.0[1], $b.0[1], $c.0[1])] })
-    };
-}
+        $(#[$doc])*
+        #[derive(Clone, Copy)]
+        #[repr(C, align(64))]
+        pub struct $lane([$v; 2]);
 
-macro_rules! binary {
-    ($trait:ident, $f:ident, $assign:ident, $fa:ident, $intrinsic:ident) => {
-        impl $trait for F64x8Avx2 {
+        compiled_kernel!($lane, $name, "avx2,avx,fma,bmi1,bmi2,lzcnt,movbe,popcnt,f16c");
+
+        /// Applies an intrinsic to both halves.
+        macro_rules! halves {
+            ($f:path, $a:expr) => {
+                $lane(unsafe { [$f($a.0[0]), $f($a.0[1])] })
+            };
+            ($f:path, $a:expr, $b:expr) => {
+                $lane(unsafe { [$f($a.0[0], $b.0[0]), $f($a.0[1], $b.0[1])] })
+            };
+            ($f:path, $a:expr, $b:expr, $c:expr) => {
+                $lane(unsafe {
+                    [$f($a.0[0], $b.0[0], $c.0[0]), $f($a.0[1], $b.0[1], $c.0[1])]
+                })
+            };
+        }
+
+        macro_rules! binary {
+            ($trait:ident, $f:ident, $assign:ident, $fa:ident, $intrinsic:ident) => {
+                impl $trait for $lane {
+                    type Output = Self;
+                    #[inline(always)]
+                    fn $f(self, o: Self) -> Self {
+                        halves!($intrinsic, self, o)
+                    }
+                }
+                impl $assign for $lane {
+                    #[inline(always)]
+                    fn $fa(&mut self, o: Self) {
+                        *self = $trait::$f(*self, o);
+                    }
+                }
+            };
+        }
+        binary!(Add, add, AddAssign, add_assign, $add);
+        binary!(Sub, sub, SubAssign, sub_assign, $sub);
+        binary!(Mul, mul, MulAssign, mul_assign, $mul);
+        binary!(BitAnd, bitand, BitAndAssign, bitand_assign, $and);
+        binary!(BitOr, bitor, BitOrAssign, bitor_assign, $or);
+
+        impl Div for $lane {
             type Output = Self;
             #[inline(always)]
-            fn $f(self, o: Self) -> Self {
-                halves!($intrinsic, self, o)
+            fn div(self, o: Self) -> Self {
+                halves!($div, self, o)
             }
         }
-        impl $assign for F64x8Avx2 {
+
+        impl Neg for $lane {
+            type Output = Self;
             #[inline(always)]
-            fn $fa(&mut self, o: Self) {
-                *self = $trait::$f(*self, o);
+            fn neg(self) -> Self {
+                halves!($xor, self, Self::splat(-0.0))
+            }
+        }
+
+        impl Not for $lane {
+            type Output = Self;
+            #[inline(always)]
+            fn not(self) -> Self {
+                halves!($xor, self, Self::from_array([<$e>::from_bits(!0); $n]))
+            }
+        }
+
+        impl $lane {
+            /// From the lanes: the same bytes, no instruction needed (this runs outside
+            /// the kernels too).
+            #[inline(always)]
+            fn from_array(a: [$e; $n]) -> Self {
+                Self(unsafe { std::mem::transmute::<[$e; $n], [$v; 2]>(a) })
+            }
+            /// The lanes, in place.
+            #[inline(always)]
+            fn as_array(&self) -> &[$e; $n] {
+                unsafe { &*std::ptr::from_ref(self).cast::<[$e; $n]>() }
+            }
+            /// The lanes, in place, to change.
+            #[inline(always)]
+            fn as_mut_array(&mut self) -> &mut [$e; $n] {
+                unsafe { &mut *std::ptr::from_mut(self).cast::<[$e; $n]>() }
+            }
+        }
+
+        macro_rules! compare {
+            ($f:ident, $op:ident) => {
+                #[inline(always)]
+                fn $f(self, o: Self) -> Self {
+                    halves!($cmp::<$op>, self, o)
+                }
+            };
+        }
+
+        impl Lane for $lane {
+            const LANES: usize = $n;
+            const ZERO: Self = Self(unsafe { std::mem::transmute::<[$e; $n], [$v; 2]>([0.0; $n]) });
+            const MIN_POSITIVE: f64 = <$e>::MIN_POSITIVE as f64;
+
+            #[inline(always)]
+            fn splat(x: f64) -> Self {
+                #[allow(clippy::cast_possible_truncation)]
+                Self::from_array([x as $e; $n])
+            }
+            lane_access!($e);
+            #[inline(always)]
+            fn mul_add(self, a: Self, b: Self) -> Self {
+                halves!($fmadd, self, a, b)
+            }
+            #[inline(always)]
+            fn mul_sub(self, a: Self, b: Self) -> Self {
+                halves!($fmsub, self, a, b)
+            }
+            #[inline(always)]
+            fn mul_neg_add(self, a: Self, b: Self) -> Self {
+                halves!($fnmadd, self, a, b)
+            }
+            #[inline(always)]
+            fn mul_neg_sub(self, a: Self, b: Self) -> Self {
+                halves!($fnmsub, self, a, b)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                halves!($sqrt, self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                // Clears the sign bits.
+                halves!($andnot, Self::splat(-0.0), self)
+            }
+            #[inline(always)]
+            fn min(self, o: Self) -> Self {
+                o.is_nan().select(self, self.fast_min(o))
+            }
+            #[inline(always)]
+            fn max(self, o: Self) -> Self {
+                o.is_nan().select(self, self.fast_max(o))
+            }
+            #[inline(always)]
+            fn fast_min(self, o: Self) -> Self {
+                halves!($min, self, o)
+            }
+            #[inline(always)]
+            fn fast_max(self, o: Self) -> Self {
+                halves!($max, self, o)
+            }
+            compare!(simd_eq, _CMP_EQ_OQ);
+            compare!(simd_lt, _CMP_LT_OQ);
+            compare!(simd_le, _CMP_LE_OQ);
+            compare!(simd_gt, _CMP_GT_OQ);
+            compare!(simd_ge, _CMP_GE_OQ);
+            #[inline(always)]
+            fn is_nan(self) -> Self {
+                halves!($cmp::<_CMP_UNORD_Q>, self, self)
+            }
+            #[inline(always)]
+            fn select(self, a: Self, b: Self) -> Self {
+                halves!($blendv, b, a, self)
+            }
+            #[inline(always)]
+            #[allow(clippy::cast_sign_loss)]
+            fn to_bitmask(self) -> u32 {
+                let [lo, hi] = self.0;
+                unsafe { ($movemask(lo) | ($movemask(hi) << ($n / 2))) as u32 }
             }
         }
     };
 }
-binary!(Add, add, AddAssign, add_assign, _mm256_add_pd);
-binary!(Sub, sub, SubAssign, sub_assign, _mm256_sub_pd);
-binary!(Mul, mul, MulAssign, mul_assign, _mm256_mul_pd);
-binary!(BitAnd, bitand, BitAndAssign, bitand_assign, _mm256_and_pd);
-binary!(BitOr, bitor, BitOrAssign, bitor_assign, _mm256_or_pd);
 
-impl Div for F64x8Avx2 {
-    type Output = Self;
-    #[inline(always)]
-    fn div(self, o: Self) -> Self {
-        halves!(_mm256_div_pd, self, o)
-    }
+/// Eight f64 landers.
+pub mod f64x8 {
+    avx2_lane!(
+        /// Eight f64 lanes in two `__m256d`. Only made on a CPU with the features of
+        /// `FEATURES`.
+        F64x8Avx2, "f64x8 AVX2", __m256d, f64, 8,
+        movemask _mm256_movemask_pd,
+        add _mm256_add_pd, sub _mm256_sub_pd, mul _mm256_mul_pd, div _mm256_div_pd,
+        and _mm256_and_pd, or _mm256_or_pd, xor _mm256_xor_pd, andnot _mm256_andnot_pd,
+        fmadd _mm256_fmadd_pd, fmsub _mm256_fmsub_pd, fnmadd _mm256_fnmadd_pd,
+        fnmsub _mm256_fnmsub_pd, sqrt _mm256_sqrt_pd, min _mm256_min_pd, max _mm256_max_pd,
+        cmp _mm256_cmp_pd, blendv _mm256_blendv_pd
+    );
 }
 
-impl Neg for F64x8Avx2 {
-    type Output = Self;
-    #[inline(always)]
-    fn neg(self) -> Self {
-        halves!(_mm256_xor_pd, self, Self::splat(-0.0))
-    }
+/// Sixteen f32 landers.
+pub mod f32x16 {
+    avx2_lane!(
+        /// Sixteen f32 lanes in two `__m256`. Only made on a CPU with the features of
+        /// `FEATURES`.
+        F32x16Avx2, "f32x16 AVX2", __m256, f32, 16,
+        movemask _mm256_movemask_ps,
+        add _mm256_add_ps, sub _mm256_sub_ps, mul _mm256_mul_ps, div _mm256_div_ps,
+        and _mm256_and_ps, or _mm256_or_ps, xor _mm256_xor_ps, andnot _mm256_andnot_ps,
+        fmadd _mm256_fmadd_ps, fmsub _mm256_fmsub_ps, fnmadd _mm256_fnmadd_ps,
+        fnmsub _mm256_fnmsub_ps, sqrt _mm256_sqrt_ps, min _mm256_min_ps, max _mm256_max_ps,
+        cmp _mm256_cmp_ps, blendv _mm256_blendv_ps
+    );
 }
 
-impl Not for F64x8Avx2 {
-    type Output = Self;
-    #[inline(always)]
-    fn not(self) -> Self {
-        halves!(_mm256_xor_pd, self, Self::splat(f64::from_bits(u64::MAX)))
-    }
-}
-
-macro_rules! compare {
-    ($f:ident, $op:ident) => {
-        #[inline(always)]
-        fn $f(self, o: Self) -> Self {
-            halves!(_mm256_cmp_pd::<$op>, self, o)
-        }
-    };
-}
-
-impl Lane for F64x8Avx2 {
-    const ZERO: Self =
-        Self(unsafe { std::mem::transmute::<[f64; LANES], [__m256d; 2]>([0.0; LANES]) });
-
-    #[inline(always)]
-    fn splat(x: f64) -> Self {
-        Self::from_array([x; LANES])
-    }
-    #[inline(always)]
-    fn from_array(a: [f64; LANES]) -> Self {
-        // The same 64 bytes: no instruction needed (this runs outside the kernels too).
-        Self(unsafe { std::mem::transmute::<[f64; LANES], [__m256d; 2]>(a) })
-    }
-    #[inline(always)]
-    fn to_array(self) -> [f64; LANES] {
-        unsafe { std::mem::transmute::<[__m256d; 2], [f64; LANES]>(self.0) }
-    }
-    #[inline(always)]
-    fn as_array(&self) -> &[f64; LANES] {
-        unsafe { &*std::ptr::from_ref(self).cast::<[f64; LANES]>() }
-    }
-    #[inline(always)]
-    fn as_mut_array(&mut self) -> &mut [f64; LANES] {
-        unsafe { &mut *std::ptr::from_mut(self).cast::<[f64; LANES]>() }
-    }
-    #[inline(always)]
-    fn mul_add(self, a: Self, b: Self) -> Self {
-        halves!(_mm256_fmadd_pd, self, a, b)
-    }
-    #[inline(always)]
-    fn mul_sub(self, a: Self, b: Self) -> Self {
-        halves!(_mm256_fmsub_pd, self, a, b)
-    }
-    #[inline(always)]
-    fn mul_neg_add(self, a: Self, b: Self) -> Self {
-        halves!(_mm256_fnmadd_pd, self, a, b)
-    }
-    #[inline(always)]
-    fn mul_neg_sub(self, a: Self, b: Self) -> Self {
-        halves!(_mm256_fnmsub_pd, self, a, b)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        Self(unsafe { [_mm256_sqrt_pd(self.0[0]), _mm256_sqrt_pd(self.0[1])] })
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        self & Self::splat(f64::from_bits(i64::MAX as u64))
-    }
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        o.is_nan().select(self, self.fast_min(o))
-    }
-    #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        o.is_nan().select(self, self.fast_max(o))
-    }
-    #[inline(always)]
-    fn fast_min(self, o: Self) -> Self {
-        halves!(_mm256_min_pd, self, o)
-    }
-    #[inline(always)]
-    fn fast_max(self, o: Self) -> Self {
-        halves!(_mm256_max_pd, self, o)
-    }
-    compare!(simd_eq, _CMP_EQ_OQ);
-    compare!(simd_lt, _CMP_LT_OQ);
-    compare!(simd_le, _CMP_LE_OQ);
-    compare!(simd_gt, _CMP_GT_OQ);
-    compare!(simd_ge, _CMP_GE_OQ);
-    #[inline(always)]
-    fn is_nan(self) -> Self {
-        halves!(_mm256_cmp_pd::<_CMP_UNORD_Q>, self, self)
-    }
-    #[inline(always)]
-    fn select(self, a: Self, b: Self) -> Self {
-        halves!(_mm256_blendv_pd, b, a, self)
-    }
-    #[inline(always)]
-    fn to_bitmask(self) -> u32 {
-        let [lo, hi] = self.0;
-        unsafe { (_mm256_movemask_pd(lo) | (_mm256_movemask_pd(hi) << 4)) as u32 }
-    }
-}
+pub use f32x16::F32x16Avx2;
+pub use f64x8::F64x8Avx2;

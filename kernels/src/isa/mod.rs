@@ -1,4 +1,5 @@
-//! The lane types, one per instruction set, and the choice among them at run time.
+//! The lane types, one per instruction set and precision, and the choice among them at run
+//! time.
 //!
 //! The binary is compiled for plain x86-64 (or whatever target it is built for); the
 //! kernels are compiled once more inside a function per instruction set that enables its
@@ -6,9 +7,10 @@
 //! outside those functions uses an instruction the CPU may lack, so the same binary runs on
 //! any x86-64 machine.
 //!
-//! The AVX-512 and AVX2 kernels fuse their multiply-adds and give the same bits; the SSE2
-//! kernel (x86-64 without AVX2, hence without FMA) rounds products and sums apart, so its
-//! results differ from theirs in the last bits.
+//! The AVX-512 and AVX2 kernels of a precision fuse their multiply-adds and give the same
+//! bits; the SSE2 kernels (x86-64 without AVX2, hence without FMA) round products and sums
+//! apart, so their results differ from theirs in the last bits. f32 kernels hold sixteen
+//! landers per lane value, f64 kernels eight; their results differ (see `Precision`).
 
 /// `FEATURES` (the CPU features a kernel is compiled for, the same list as its
 /// `#[target_feature]`) and `missing()` (those this CPU lacks).
@@ -96,6 +98,29 @@ macro_rules! compiled_kernel {
         #[inline(never)]
         unsafe fn observe(p: &Params<$lane>, block: &mut Block<$lane>) -> $lane {
             crate::outcome::observe(p, block)
+        }
+    };
+}
+
+/// `lane`, `set_lane` and `set_mask_lane` of a `Lane` impl, through the lane type's
+/// `as_array` and `as_mut_array` of lanes of `$e` (memory, no instruction of the kernel's
+/// set: these run outside the kernels).
+macro_rules! lane_access {
+    ($e:ty) => {
+        #[inline(always)]
+        fn lane(&self, i: usize) -> f64 {
+            f64::from(self.as_array()[i])
+        }
+        #[inline(always)]
+        fn set_lane(&mut self, i: usize, x: f64) {
+            #[allow(clippy::cast_possible_truncation)]
+            {
+                self.as_mut_array()[i] = x as $e;
+            }
+        }
+        #[inline(always)]
+        fn set_mask_lane(&mut self, i: usize, on: bool) {
+            self.as_mut_array()[i] = if on { <$e>::from_bits(!0) } else { 0.0 };
         }
     };
 }
@@ -198,32 +223,7 @@ impl Isa {
         }
     }
 
-    /// Runs `w` with the kernel of `self`.
-    ///
-    /// # Panics
-    /// If this CPU does not run that kernel (check `available` first).
-    pub fn dispatch<W: WithKernel>(self, w: W) -> W::Output {
-        assert!(self.available(), "this CPU has no {} kernel", self.key());
-        match self {
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx512 => w.run::<avx512::F64x8Avx512>(),
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx2 => w.run::<avx2::F64x8Avx2>(),
-            _ => w.run::<wide::f64x8>(),
-        }
-    }
-
-    /// Lane type and instruction set of the kernel of `self`, as the binary reports them.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Isa::Avx512 => "f64x8 AVX-512",
-            Isa::Avx2 => "f64x8 AVX2",
-            Isa::Portable => <wide::f64x8 as Kernel>::NAME,
-        }
-    }
-
-    /// Whether the kernel of `self` fuses its multiply-adds.
+    /// Whether the kernels of `self` fuse their multiply-adds.
     #[must_use]
     pub fn fused(self) -> bool {
         match self {
@@ -232,14 +232,128 @@ impl Isa {
         }
     }
 
-    /// The arithmetic of the kernel of `self`, as files record it: kernels with the same
-    /// arithmetic write the same bits.
+    /// The kernel of `self` in `precision`.
+    #[must_use]
+    pub fn kernel(self, precision: Precision) -> KernelKind {
+        KernelKind {
+            isa: self,
+            precision,
+        }
+    }
+}
+
+/// The precision of the lanes: f64 (eight landers per lane value) or f32 (sixteen). The
+/// physics is the same code; f32 rounds every operation to 24 bits instead of 53, so single
+/// samples near a decision threshold may end otherwise, while the shares a sweep reports
+/// agree within their sampling error (measured in the README).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Precision {
+    /// Eight f64 landers per lane value.
+    F64,
+    /// Sixteen f32 landers per lane value.
+    F32,
+}
+
+impl Precision {
+    /// Both precisions, the default first.
+    pub const ALL: [Precision; 2] = [Precision::F64, Precision::F32];
+
+    /// The name users give it (`--precision`, `simulation.precision`).
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Precision::F64 => "f64",
+            Precision::F32 => "f32",
+        }
+    }
+
+    /// The precision named `key`, if any.
+    #[must_use]
+    pub fn from_key(key: &str) -> Option<Precision> {
+        Precision::ALL.into_iter().find(|p| p.key() == key)
+    }
+
+    /// Landers per lane value.
+    #[must_use]
+    pub fn lanes(self) -> usize {
+        match self {
+            Precision::F64 => 8,
+            Precision::F32 => 16,
+        }
+    }
+}
+
+/// A kernel: instruction set and precision.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct KernelKind {
+    /// The instruction set.
+    pub isa: Isa,
+    /// The lanes' precision.
+    pub precision: Precision,
+}
+
+impl KernelKind {
+    /// The widest instruction set this CPU runs, in f64.
+    #[must_use]
+    pub fn detect() -> KernelKind {
+        KernelKind {
+            isa: Isa::detect(),
+            precision: Precision::F64,
+        }
+    }
+
+    /// Runs `w` with this kernel.
+    ///
+    /// # Panics
+    /// If this CPU does not run its instruction set (check `isa.available()` first).
+    pub fn dispatch<W: WithKernel>(self, w: W) -> W::Output {
+        assert!(
+            self.isa.available(),
+            "this CPU has no {} kernel",
+            self.isa.key()
+        );
+        match (self.isa, self.precision) {
+            #[cfg(target_arch = "x86_64")]
+            (Isa::Avx512, Precision::F64) => w.run::<avx512::F64x8Avx512>(),
+            #[cfg(target_arch = "x86_64")]
+            (Isa::Avx512, Precision::F32) => w.run::<avx512::F32x16Avx512>(),
+            #[cfg(target_arch = "x86_64")]
+            (Isa::Avx2, Precision::F64) => w.run::<avx2::F64x8Avx2>(),
+            #[cfg(target_arch = "x86_64")]
+            (Isa::Avx2, Precision::F32) => w.run::<avx2::F32x16Avx2>(),
+            (_, Precision::F64) => w.run::<wide::f64x8>(),
+            (_, Precision::F32) => w.run::<wide::f32x16>(),
+        }
+    }
+
+    /// Lane type and instruction set, as the binary reports them.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match (self.isa, self.precision) {
+            (Isa::Avx512, Precision::F64) => "f64x8 AVX-512",
+            (Isa::Avx512, Precision::F32) => "f32x16 AVX-512",
+            (Isa::Avx2, Precision::F64) => "f64x8 AVX2",
+            (Isa::Avx2, Precision::F32) => "f32x16 AVX2",
+            (Isa::Portable, Precision::F64) => <wide::f64x8 as Kernel>::NAME,
+            (Isa::Portable, Precision::F32) => <wide::f32x16 as Kernel>::NAME,
+        }
+    }
+
+    /// Whether this kernel fuses its multiply-adds.
+    #[must_use]
+    pub fn fused(self) -> bool {
+        self.isa.fused()
+    }
+
+    /// The arithmetic of this kernel, as files record it: kernels with the same arithmetic
+    /// write the same bits.
     #[must_use]
     pub fn arithmetic(self) -> &'static str {
-        if self.fused() {
-            "f64x8-fma"
-        } else {
-            "f64x8-nofma"
+        match (self.precision, self.fused()) {
+            (Precision::F64, true) => "f64x8-fma",
+            (Precision::F64, false) => "f64x8-nofma",
+            (Precision::F32, true) => "f32x16-fma",
+            (Precision::F32, false) => "f32x16-nofma",
         }
     }
 }
