@@ -351,3 +351,41 @@ fn f32_sweeps_repeat_byte_for_byte_over_threads_and_shards() {
         "no file from a refused merge"
     );
 }
+
+/// A sweep in f32 lanes whose sliders go tens of metres (three legs, dampers, 120 s) warns
+/// that f32 no longer resolves their contact; the same sweep in f64 does not.
+#[test]
+fn f32_sweeps_warn_of_samples_beyond_their_reach() {
+    let dir = TempDir::new("f32-reach");
+    let legs3 = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/legs-3.toml"),
+    )
+    .unwrap();
+    dir.write("s64.toml", &legs3);
+    dir.write(
+        "s32.toml",
+        &legs3.replace("[simulation]\n", "[simulation]\nprecision = \"f32\"\n"),
+    );
+    for (scenario, warns) in [("s32.toml", true), ("s64.toml", false)] {
+        let run = touchdown(
+            dir.path(),
+            &[
+                "sweep",
+                "--scenario",
+                scenario,
+                "--samples",
+                "200",
+                "--quiet",
+                "--out",
+                "o.arrow",
+            ],
+        );
+        assert_eq!(run.code, Some(0), "{run}");
+        assert_eq!(
+            run.stderr
+                .contains("f32 lanes resolve a footpad's static contact deflection"),
+            warns,
+            "{scenario}: {run}"
+        );
+    }
+}
