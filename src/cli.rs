@@ -559,10 +559,6 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     let mut computed = 0u64;
     // Samples of this run that never touched the surface (all `bouncing`, without a bounce).
     let mut untouched = 0u64;
-    // Samples not tipped (a tip is decided on the attitude) that moved beyond the reach of
-    // f32 lanes (see `Model::f32_reach_m`).
-    let f32_reach = model.f32_reach_m();
-    let mut beyond_f32 = 0u64;
     let ran = pool.install(|| {
         crate::sweep::run_until(
             scenario,
@@ -576,10 +572,6 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
                     counts[r.summary.outcome as usize] += 1;
                     steps += r.summary.steps;
                     untouched += u64::from(r.summary.first_contact_s.is_none());
-                    beyond_f32 += u64::from(
-                        r.summary.displacement_m > f32_reach
-                            && !matches!(r.summary.outcome, Outcome::Tipped | Outcome::Diverged),
-                    );
                 }
                 computed += rows.len() as u64;
                 bar.inc(rows.len() as u64);
@@ -653,16 +645,6 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
              high or an upward velocity error for the run's length? See \
              initial.clearance_m, inputs.release_height_m and inputs.velocity_error_z_m_s",
             scenario.simulation.t_max_s
-        );
-    }
-    if plan.kernel.precision == kernels::isa::Precision::F32 && beyond_f32 > 0 {
-        eprintln!(
-            "touchdown: warning: {beyond_f32} of the {computed} samples run ended stable, \
-             sliding or bouncing more than {f32_reach:.1} m from where they landed: there \
-             f32 lanes resolve a footpad's static contact deflection ({:.2e} m) to less than \
-             1/8, and a slider may be called bouncing. Run this scenario in f64 \
-             (simulation.precision = \"f64\") for these samples' outcomes",
-            f32_reach / 2f64.powi(20)
         );
     }
     Ok(())

@@ -301,7 +301,13 @@ impl<K: Kernel> Worker<K> {
             }
             stats.busy_lane_steps += busy;
             stats.lane_steps += K::LANES as u64;
-            let decided = K::advance(params, &mut self.block);
+            let bits = K::advance(params, &mut self.block);
+            let (decided, far) = (bits & 0xffff, bits >> 16);
+            if far != 0 {
+                for i in (0..K::LANES).filter(|i| far & (1 << i) != 0) {
+                    self.block.recentre(i);
+                }
+            }
             if decided != 0 {
                 for i in 0..K::LANES {
                     if decided & (1 << i) != 0 {

@@ -246,6 +246,42 @@ impl<L: Lane> Block<L> {
             .count()
     }
 
+    /// Moves lane `i`'s origin along its surface's base plane to the foot of its CG, outside
+    /// the kernels (in f64): every position it keeps (CG, friction and rest anchors, the
+    /// start of its track) moves by the same in-plane vector `s`, and its terrain's offsets
+    /// by `s` along the plane's axes, so that nothing it computes changes but the rounding
+    /// of its positions, which then stay small. The kernels ask for it (`outcome_bits`)
+    /// when the CG is farther than `L::RECENTRE_M` from the origin: f32 lanes only.
+    pub fn recentre(&mut self, i: usize) {
+        let n = self.surface.normal.lane(i);
+        let p = self.position_m.lane(i);
+        let height = n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
+        let s: [f64; 3] = std::array::from_fn(|k| p[k] - height * n[k]);
+        let shift = |v: &mut Vec3<L>| {
+            let x = v.lane(i);
+            v.set_lane(i, std::array::from_fn(|k| x[k] - s[k]));
+        };
+        shift(&mut self.position_m);
+        shift(&mut self.start_position_m);
+        shift(&mut self.track.start_m);
+        for leg in &mut self.legs {
+            shift(&mut leg.anchor_m);
+            shift(&mut leg.rest_anchor_m);
+        }
+        let along = |t: &Vec3<L>| {
+            let t = t.lane(i);
+            t[0] * s[0] + t[1] * s[1] + t[2] * s[2]
+        };
+        let (du, dv) = (
+            along(&self.surface.tangent_u),
+            along(&self.surface.tangent_v),
+        );
+        let u = self.surface.offset_u_m.lane(i);
+        self.surface.offset_u_m.set_lane(i, u + du);
+        let v = self.surface.offset_v_m.lane(i);
+        self.surface.offset_v_m.set_lane(i, v + dv);
+    }
+
     /// Empties lane `i`: it takes no more steps and decides nothing.
     pub fn retire(&mut self, i: usize) {
         self.active.set_mask_lane(i, false);

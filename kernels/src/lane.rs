@@ -52,6 +52,10 @@ pub trait Lane:
     const ZERO: Self;
     /// The least positive normal number of the lanes' precision.
     const MIN_POSITIVE: f64;
+    /// Distance from the origin beyond which a lane's state is moved back near it
+    /// (`Block::recentre`): 2 m in f32, whose positions of tens of metres could not resolve
+    /// a footpad's contact deflection of micrometres; never in f64.
+    const RECENTRE_M: f64;
     /// Every lane `x` (rounded to the lanes' precision).
     fn splat(x: f64) -> Self;
     /// Lane `i`, outside the kernels (through memory).

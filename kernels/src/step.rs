@@ -164,13 +164,25 @@ pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
 }
 
 /// One step of every lane holding a sample: its step size, the step, the outcome
-/// tracking. Returns the lanes decided by it as bits (lane `i` in bit `i`). Each lane type
-/// compiles this inside a function that enables its instruction set (`isa`).
+/// tracking. Returns `outcome_bits` of the lanes it decided. Each lane type compiles this
+/// inside a function that enables its instruction set (`isa`).
 #[inline(always)]
 pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> u32 {
     let dt = step_size(p, block);
     step(p, block, dt);
-    crate::outcome::observe(p, block).to_bitmask()
+    let decided = crate::outcome::observe(p, block);
+    outcome_bits(block, decided)
+}
+
+/// What `advance` returns: the lanes decided (mask `decided`) in bits 0-15 (lane `i` in
+/// bit `i`), and in bits 16-31 the undecided lanes whose CG is farther than
+/// `L::RECENTRE_M` from the origin, for `Block::recentre` (never, in f64 lanes).
+#[inline(always)]
+#[must_use]
+pub fn outcome_bits<L: Lane>(block: &Block<L>, decided: L) -> u32 {
+    let reach = L::splat(L::RECENTRE_M * L::RECENTRE_M);
+    let far = block.position_m.length_squared().simd_gt(reach) & block.active & !decided;
+    decided.to_bitmask() | (far.to_bitmask() << 16)
 }
 
 #[cfg(test)]

@@ -193,21 +193,6 @@ impl Model {
         self.thresholds.early_sliding && self.terrain.is_none() && crush_least > slide_load
     }
 
-    /// How far from the origin (where the lander lands) f32 lanes still resolve a
-    /// footpad's static contact deflection, `m g / (legs k)`, to 1/8: f32 positions of
-    /// magnitude `D` are spaced at most `D 2^-23` apart, so up to `deflection 2^20`.
-    /// Farther, the contact force is a few roundings of the position and the outcome is
-    /// not to be trusted. Measured at 100,000 samples: `scenarios/legs-3.toml` (11.7 m
-    /// here) has 5,149 samples end otherwise in f32 than in f64, 4,664 of them sliders at
-    /// 120 s, 28 m and more from their landing, called `bouncing`; 4,901 of the 5,149 lie
-    /// beyond this reach. The default sweep (8.8 m) has 290 samples in 1e6 beyond it.
-    #[must_use]
-    pub fn f32_reach_m(&self) -> f64 {
-        let deflection = self.mass_kg * self.gravity_m_s2
-            / (self.legs.len() as f64 * self.contact.stiffness_n_per_m);
-        deflection * 2f64.powi(20)
-    }
-
     /// Height of the highest point of the terrain above the plane (0 for the plane), m.
     #[must_use]
     pub fn terrain_top_m(&self) -> f64 {

@@ -78,7 +78,8 @@ macro_rules! compiled_kernel {
             unsafe {
                 let dt = step_size(p, block);
                 step(p, block, dt);
-                observe(p, block).to_bitmask()
+                let decided = observe(p, block);
+                crate::step::outcome_bits(block, decided)
             }
         }
 
@@ -107,6 +108,11 @@ macro_rules! compiled_kernel {
 /// set: these run outside the kernels).
 macro_rules! lane_access {
     ($e:ty) => {
+        const RECENTRE_M: f64 = if size_of::<$e>() == 4 {
+            2.0
+        } else {
+            f64::INFINITY
+        };
         #[inline(always)]
         fn lane(&self, i: usize) -> f64 {
             f64::from(self.as_array()[i])
@@ -143,7 +149,8 @@ pub trait Kernel: Lane {
     /// same bits.
     const FUSED: bool;
     /// One step of every lane holding a sample (`step_size`, `step`, `observe`); returns
-    /// the lanes it decided as bits (lane `i` in bit `i`).
+    /// the lanes it decided as bits (lane `i` in bit `i`), and the lanes to recentre in
+    /// bits 16-31 (`step::outcome_bits`).
     fn advance(p: &Params<Self>, block: &mut Block<Self>) -> u32;
 }
 
