@@ -14,7 +14,7 @@ use crate::sampling::{self, Sample};
 use crate::scenario::Scenario;
 use glam::{DQuat, DVec3};
 use kernels::block::{Block, LaneInit};
-use kernels::isa::{Kernel, KernelKind, WithKernel};
+use kernels::isa::{Isa, Kernel, KernelKind, WithKernel};
 use kernels::lane::{Lane, MAX_LANES};
 use kernels::params::{HoneycombParams, LegParams, Params, lane};
 use kernels::vec3::Vec3;
@@ -337,7 +337,8 @@ pub struct Ran {
     pub end: u64,
 }
 
-/// Runs `range` on the current rayon pool with the widest kernel this CPU has, one worker
+/// Runs `range` on the current rayon pool with the widest kernel this CPU has, in the
+/// scenario's precision (`simulation.precision`), one worker
 /// (one block) per thread, handing rows to `sink` a window of `4 * chunk` samples per
 /// thread at a time, in sample order. Stops early when `sink` returns an error.
 pub fn run(
@@ -348,8 +349,7 @@ pub fn run(
     sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
 ) -> anyhow::Result<LaneStats> {
     let never = AtomicUsize::new(0);
-    let isa = kernels::isa::Isa::detect();
-    Ok(run_until(scenario, model, isa, range, chunk, &never, sink)?.stats)
+    Ok(run_until(scenario, model, Isa::detect(), range, chunk, &never, sink)?.stats)
 }
 
 /// `run` with the kernel of `isa` (which this CPU must have), until `stop` becomes nonzero:
@@ -364,7 +364,7 @@ pub fn run(
 pub fn run_until(
     scenario: &Scenario,
     model: &Model,
-    isa: kernels::isa::Isa,
+    isa: Isa,
     range: Range<u64>,
     chunk: u64,
     stop: &AtomicUsize,

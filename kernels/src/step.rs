@@ -180,6 +180,10 @@ pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> u32 {
 #[inline(always)]
 #[must_use]
 pub fn outcome_bits<L: Lane>(block: &Block<L>, decided: L) -> u32 {
+    if L::RECENTRE_M.is_infinite() {
+        // f64 lanes: nothing to compute (a constant, so the test costs nothing either).
+        return decided.to_bitmask();
+    }
     let reach = L::splat(L::RECENTRE_M * L::RECENTRE_M);
     let far = block.position_m.length_squared().simd_gt(reach) & block.active & !decided;
     decided.to_bitmask() | (far.to_bitmask() << 16)

@@ -103,9 +103,9 @@ macro_rules! compiled_kernel {
     };
 }
 
-/// `lane`, `set_lane` and `set_mask_lane` of a `Lane` impl, through the lane type's
-/// `as_array` and `as_mut_array` of lanes of `$e` (memory, no instruction of the kernel's
-/// set: these run outside the kernels).
+/// `RECENTRE_M`, and `lane`, `set_lane` and `set_mask_lane` of a `Lane` impl, through the
+/// lane type's `as_array` and `as_mut_array` of lanes of `$e` (memory, no instruction of
+/// the kernel's set: these run outside the kernels).
 macro_rules! lane_access {
     ($e:ty) => {
         const RECENTRE_M: f64 = if size_of::<$e>() == 4 {
@@ -265,7 +265,7 @@ impl Precision {
     /// Both precisions, the default first.
     pub const ALL: [Precision; 2] = [Precision::F64, Precision::F32];
 
-    /// The name users give it (`--precision`, `simulation.precision`).
+    /// The name users give it (the scenario's `simulation.precision`).
     #[must_use]
     pub fn key(self) -> &'static str {
         match self {
@@ -280,12 +280,12 @@ impl Precision {
         Precision::ALL.into_iter().find(|p| p.key() == key)
     }
 
-    /// Landers per lane value.
+    /// Landers per lane value (the same for every instruction set).
     #[must_use]
     pub fn lanes(self) -> usize {
         match self {
-            Precision::F64 => 8,
-            Precision::F32 => 16,
+            Precision::F64 => <wide::f64x8 as Lane>::LANES,
+            Precision::F32 => <wide::f32x16 as Lane>::LANES,
         }
     }
 }
@@ -300,15 +300,6 @@ pub struct KernelKind {
 }
 
 impl KernelKind {
-    /// The widest instruction set this CPU runs, in f64.
-    #[must_use]
-    pub fn detect() -> KernelKind {
-        KernelKind {
-            isa: Isa::detect(),
-            precision: Precision::F64,
-        }
-    }
-
     /// Runs `w` with this kernel.
     ///
     /// # Panics
