@@ -105,6 +105,7 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
         inverse_mass_per_kg: lane(1.0 / m.mass_kg),
         inertia_kg_m2: v(m.inertia_kg_m2),
         inverse_inertia: v(m.inertia_kg_m2.recip()),
+        gyroscopic: v(crate::reference::rigid_body::gyroscopic(m.inertia_kg_m2)),
         legs: m
             .legs
             .iter()
@@ -222,11 +223,16 @@ struct Padded<T>(T);
 /// to 128 bytes: the workers of two threads sit side by side, and x86 cores fetch cache
 /// lines in pairs (see `kernels::block::LegLanes`).
 #[repr(align(128))]
-struct Worker<L> {
+struct Worker<L: Lane> {
     block: Block<L>,
     /// The sample of each lane (the first `L::LANES` used).
     samples: [Option<Sample>; MAX_LANES],
 }
+
+/// The most steps a worker asks of the kernel at once: the kernel returns sooner when a
+/// lane is decided. Between calls the worker sees whether the window is complete, so a
+/// worker steps at most this many steps past it (a few milliseconds).
+const STEPS_PER_CALL: u32 = 256;
 
 /// Where a worker takes samples from, and when it may stop.
 struct Feed<'a> {
@@ -299,10 +305,12 @@ impl<K: Kernel> Worker<K> {
             if busy == 0 {
                 break;
             }
-            stats.busy_lane_steps += busy;
-            stats.lane_steps += K::LANES as u64;
-            let bits = K::advance(params, &mut self.block);
-            let (decided, far) = (bits & 0xffff, bits >> 16);
+            // The lanes change only between calls (a decision stops the kernel), so `busy`
+            // holds for every step of one.
+            let advanced = K::advance(params, &mut self.block, STEPS_PER_CALL);
+            stats.busy_lane_steps += busy * u64::from(advanced.steps);
+            stats.lane_steps += K::LANES as u64 * u64::from(advanced.steps);
+            let (decided, far) = (advanced.bits & 0xffff, advanced.bits >> 16);
             if far != 0 {
                 for i in (0..K::LANES).filter(|i| far & (1 << i) != 0) {
                     self.block.recentre(i);
@@ -528,13 +536,12 @@ mod tests {
                 let sample = crate::sampling::sample(&scenario, i as u64);
                 block.load(i, &lane_init(&model, &sample));
             }
-            for _ in 0..20 {
-                let decided = K::advance(&params, &mut block);
-                assert_eq!(decided, 0, "{what}: nothing decided yet");
-            }
+            let advanced = K::advance(&params, &mut block, 20);
+            assert_eq!(advanced.steps, 20, "{what}: nothing decided yet");
+            assert_eq!(advanced.bits, 0, "{what}: nothing decided yet");
             let lane = 3;
             poison(&mut block, lane);
-            let decided = K::advance(&params, &mut block);
+            let decided = K::advance(&params, &mut block, 1).bits;
             assert_eq!(decided, 1 << lane, "{what}: only the poisoned lane ends");
             let s = lane_summary(&block, lane);
             assert_eq!(s.outcome, Outcome::Diverged, "{what}");

@@ -1,7 +1,7 @@
 //! The state of `L::LANES` landers, field per field (structure of arrays), with the surface
 //! each lane lands on and what its outcome tracking remembers.
 
-use crate::lane::{Lane, MAX_LANES, all_false};
+use crate::lane::{Lane, MAX_LANES, Mask, all_false};
 use crate::params::{Params, lane};
 use crate::vec3::{Mat3, Quat, Vec3, mat3_of};
 
@@ -15,12 +15,12 @@ use crate::vec3::{Mat3, Quat, Vec3, mat3_of};
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(128))]
 #[allow(missing_docs)]
-pub struct LegLanes<L> {
+pub struct LegLanes<L: Lane> {
     pub stroke_m: L,
     pub absorbed_j: L,
     pub anchor_m: Vec3<L>,
     /// Mask: the friction anchor is set (the leg touched in the previous step).
-    pub anchored: L,
+    pub anchored: L::Mask,
     /// The friction anchor when the current rest began (see `outcome`).
     pub rest_anchor_m: Vec3<L>,
     pub peak_normal_n: L,
@@ -30,13 +30,22 @@ pub struct LegLanes<L> {
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(128))]
 #[allow(missing_docs)]
-pub struct LegStep<L> {
+pub struct LegStep<L: Lane> {
+    /// The footpad's height above the base plane at the start of the step
+    /// (`step::footpad_heights`).
+    pub height_m: L,
+    /// The damper stroke at the start of the step (with dampers only).
+    pub start_stroke_m: L,
+    /// The footpad's position at the start of the step, found by the outcome tracking
+    /// where it needs it (`outcome::start_tips`): the step does not.
     pub tip_m: Vec3<L>,
+    /// Where the leg touches in some lane of the block; left from an earlier step where
+    /// it touches in none (the outcome tracking reads it only for footpads that touch).
     pub tip_velocity_m_s: Vec3<L>,
     pub penetration_m: L,
     pub normal_n: L,
     /// Mask: the footpad slips (in contact, friction at its cap).
-    pub slipping: L,
+    pub slipping: L::Mask,
 }
 
 /// The surface of each lane.
@@ -55,7 +64,7 @@ pub struct SurfaceLanes<L> {
 /// What the outcome tracking remembers, per lane.
 #[derive(Debug, Clone, Copy)]
 #[allow(missing_docs)]
-pub struct Track<L> {
+pub struct Track<L: Lane> {
     pub start_m: Vec3<L>,
     pub rest_s: L,
     pub min_cos_tilt: L,
@@ -65,7 +74,7 @@ pub struct Track<L> {
     pub peak_acceleration_z: L,
     pub bounces: L,
     /// Mask: touched since the last lift-off.
-    pub touched: L,
+    pub touched: L::Mask,
     /// Time of first contact, NaN until then.
     pub first_contact_s: L,
     pub max_penetration: L,
@@ -77,7 +86,7 @@ pub struct Track<L> {
 /// `LANES` landers.
 #[derive(Debug, Clone)]
 #[allow(missing_docs)]
-pub struct Block<L> {
+pub struct Block<L: Lane> {
     pub t_s: L,
     /// What rounding has dropped from `t_s` so far (see `step::add_time`).
     pub t_error_s: L,
@@ -92,7 +101,7 @@ pub struct Block<L> {
     pub surface: SurfaceLanes<L>,
     pub track: Track<L>,
     /// Mask: the lane holds a sample.
-    pub active: L,
+    pub active: L::Mask,
     /// The current step of every leg (scratch, overwritten by every step).
     pub leg_step: Vec<LegStep<L>>,
     /// Contact force (I) and moment (B) of the current step, and the body at its start.
@@ -100,8 +109,8 @@ pub struct Block<L> {
     pub moment_n_m: Vec3<L>,
     pub start_position_m: Vec3<L>,
     pub start_velocity_m_s: Vec3<L>,
-    /// `Z_B` in I at the start of the step (the third column of its rotation).
-    pub start_z_body: Vec3<L>,
+    /// The rotation at the start of the step.
+    pub start_rotation: Mat3<L>,
     pub start_rate_rad_s: Vec3<L>,
     pub start_t_s: L,
     pub dt_s: L,
@@ -134,16 +143,18 @@ impl<L: Lane> Block<L> {
             stroke_m: zero,
             absorbed_j: zero,
             anchor_m: Vec3::ZERO,
-            anchored: all_false(),
+            anchored: all_false::<L>(),
             rest_anchor_m: Vec3::ZERO,
             peak_normal_n: zero,
         };
         let leg_step = LegStep {
+            height_m: zero,
+            start_stroke_m: zero,
             tip_m: Vec3::ZERO,
             tip_velocity_m_s: Vec3::ZERO,
             penetration_m: zero,
             normal_n: zero,
-            slipping: all_false(),
+            slipping: all_false::<L>(),
         };
         let identity = Quat {
             x: zero,
@@ -179,19 +190,23 @@ impl<L: Lane> Block<L> {
                 peak_acceleration_squared: zero,
                 peak_acceleration_z: zero,
                 bounces: zero,
-                touched: all_false(),
+                touched: all_false::<L>(),
                 first_contact_s: lane(f64::NAN),
                 max_penetration: zero,
                 steps: zero,
                 outcome: lane(-1.0),
             },
-            active: all_false(),
+            active: all_false::<L>(),
             leg_step: vec![leg_step; params.legs.len()],
             force_n: Vec3::ZERO,
             moment_n_m: Vec3::ZERO,
             start_position_m: Vec3::ZERO,
             start_velocity_m_s: Vec3::ZERO,
-            start_z_body: Vec3::splat([0.0, 0.0, 1.0]),
+            start_rotation: Mat3 {
+                x_axis: Vec3::new(one, zero, zero),
+                y_axis: Vec3::new(zero, one, zero),
+                z_axis: Vec3::new(zero, zero, one),
+            },
             start_rate_rad_s: Vec3::ZERO,
             start_t_s: zero,
             dt_s: zero,
@@ -212,7 +227,7 @@ impl<L: Lane> Block<L> {
             set(&mut leg.stroke_m, 0.0);
             set(&mut leg.absorbed_j, 0.0);
             leg.anchor_m.set_lane(i, [0.0; 3]);
-            leg.anchored.set_mask_lane(i, false);
+            leg.anchored.set_lane(i, false);
             leg.rest_anchor_m.set_lane(i, [0.0; 3]);
             set(&mut leg.peak_normal_n, 0.0);
         }
@@ -230,20 +245,18 @@ impl<L: Lane> Block<L> {
         set(&mut t.peak_acceleration_squared, 0.0);
         set(&mut t.peak_acceleration_z, 0.0);
         set(&mut t.bounces, 0.0);
-        t.touched.set_mask_lane(i, false);
+        t.touched.set_lane(i, false);
         set(&mut t.first_contact_s, f64::NAN);
         set(&mut t.max_penetration, 0.0);
         set(&mut t.steps, 0.0);
         set(&mut t.outcome, -1.0);
-        self.active.set_mask_lane(i, true);
+        self.active.set_lane(i, true);
     }
 
     /// Number of lanes holding a sample (read through memory, outside the kernels).
     #[must_use]
     pub fn busy_lanes(&self) -> usize {
-        (0..L::LANES)
-            .filter(|&i| self.active.lane(i).to_bits() != 0)
-            .count()
+        (0..L::LANES).filter(|&i| self.active.lane(i)).count()
     }
 
     /// Moves lane `i`'s origin along its surface's base plane to the foot of its CG, outside
@@ -251,7 +264,7 @@ impl<L: Lane> Block<L> {
     /// start of its track) moves by the same in-plane vector `s`, and its terrain's offsets
     /// by `s` along the plane's axes, so that nothing it computes changes but the rounding
     /// of its positions, which then stay small. The kernels ask for it (`outcome_bits`)
-    /// when the CG is farther than `L::RECENTRE_M` from the origin: f32 lanes only.
+    /// when the CG's foot is farther than `L::RECENTRE_M` from the origin: f32 lanes only.
     pub fn recentre(&mut self, i: usize) {
         let n = self.surface.normal.lane(i);
         let p = self.position_m.lane(i);
@@ -284,6 +297,6 @@ impl<L: Lane> Block<L> {
 
     /// Empties lane `i`: it takes no more steps and decides nothing.
     pub fn retire(&mut self, i: usize) {
-        self.active.set_mask_lane(i, false);
+        self.active.set_lane(i, false);
     }
 }

@@ -3,7 +3,7 @@
 
 use crate::block::LegLanes;
 use crate::honeycomb;
-use crate::lane::Lane;
+use crate::lane::{Lane, Mask};
 use crate::params::Params;
 use crate::vec3::Vec3;
 
@@ -13,17 +13,17 @@ use crate::vec3::Vec3;
 /// trace; nothing in a sweep reads it.)
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn leg_force<L: Lane>(
+pub fn leg_force<L: Lane, const DAMPERS: bool>(
     p: &Params<L>,
     dt: L,
-    contact: L,
+    contact: L::Mask,
     penetration: L,
     normal: Vec3<L>,
     tip: Vec3<L>,
     tip_velocity: Vec3<L>,
     strut_up: Vec3<L>,
     leg: &mut LegLanes<L>,
-) -> (Vec3<L>, L, L) {
+) -> (Vec3<L>, L, L::Mask) {
     let zero = L::splat(0.0);
     let normal_velocity = normal.dot(tip_velocity);
     let mut normal_n = p
@@ -49,7 +49,7 @@ pub fn leg_force<L: Lane>(
         slip_t.z.mul_neg_sub(k, velocity_t.z * c),
     );
 
-    if let Some(h) = &p.honeycomb {
+    if let (true, Some(h)) = (DAMPERS, &p.honeycomb) {
         let cap = p.friction_coefficient * normal_n;
         let friction_now =
             friction * (cap / friction.length().max(cap).max(L::splat(L::MIN_POSITIVE)));

@@ -1,7 +1,7 @@
 //! Crushable honeycomb dampers, over lanes: the same law as the reference's `honeycomb`
 //! (rigid-plastic in series with the contact, implicit stroke increment).
 
-use crate::lane::Lane;
+use crate::lane::{Lane, Mask};
 use crate::params::HoneycombParams;
 
 /// Strut directions closer than this to the surface plane cannot relieve the load.
@@ -59,7 +59,7 @@ pub fn piece_end<L: Lane>(h: &HoneycombParams<L>, stroke_m: L) -> L {
 #[must_use]
 pub fn crush<L: Lane>(
     h: &HoneycombParams<L>,
-    mask: L,
+    mask: L::Mask,
     stroke_m: L,
     load_n: L,
     normal_force_n: L,

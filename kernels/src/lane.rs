@@ -3,8 +3,10 @@
 //! over `L: Lane`; `isa` has the lane types (AVX-512, AVX2 with FMA, and a portable one, in
 //! f64 and f32) and picks one at run time.
 //!
-//! A mask is a lane value with every bit of a lane set (true) or clear (false), as
-//! comparisons return it; `select`, `&`, `|` and `!` work on masks.
+//! A mask (`Lane::Mask`) holds a truth value per lane, as comparisons return it; `&`, `|`
+//! and `!` combine masks and `select` picks by one. Each lane type has the masks its
+//! instruction set has: AVX-512's mask registers (a bit a lane), or, for AVX2 and the
+//! portable types, lane values with every bit of a lane set (true) or clear (false).
 //!
 //! Every lane type computes each lane as IEEE 754 arithmetic of its precision does: `+ - * /`
 //! and `sqrt` correctly rounded, the multiply-adds fused (rounded once) where the CPU has
@@ -22,6 +24,35 @@ use std::ops::{
 /// kept beside a block.
 pub const MAX_LANES: usize = 16;
 
+/// A truth value per lane of a lane type (`Lane::Mask`).
+pub trait Mask:
+    Copy
+    + Debug
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + Not<Output = Self>
+    + BitAndAssign
+    + BitOrAssign
+    + Send
+    + Sync
+    + 'static
+{
+    /// Every lane false.
+    const NONE: Self;
+    /// The mask as bits, lane `i` in bit `i`.
+    fn to_bitmask(self) -> u32;
+    /// Lane `i`, outside the kernels.
+    fn lane(&self, i: usize) -> bool;
+    /// Sets lane `i`, outside the kernels.
+    fn set_lane(&mut self, i: usize, on: bool);
+    /// Per lane: `a` where true, `b` where false.
+    #[inline(always)]
+    #[must_use]
+    fn select<L: Lane<Mask = Self>>(self, a: L, b: L) -> L {
+        L::blend(self, a, b)
+    }
+}
+
 /// `LANES` landers side by side. Implementations are `#[inline(always)]` throughout: the
 /// kernels are compiled inside one function per instruction set (see `isa`), and anything
 /// not inlined there would lose that instruction set.
@@ -37,24 +68,21 @@ pub trait Lane:
     + AddAssign
     + SubAssign
     + MulAssign
-    + BitAnd<Output = Self>
-    + BitOr<Output = Self>
-    + Not<Output = Self>
-    + BitAndAssign
-    + BitOrAssign
     + Send
     + Sync
     + 'static
 {
     /// Number of landers a value holds (at most `MAX_LANES`).
     const LANES: usize;
+    /// A truth value per lane.
+    type Mask: Mask;
     /// Every lane 0.
     const ZERO: Self;
     /// The least positive normal number of the lanes' precision.
     const MIN_POSITIVE: f64;
     /// Distance from the origin beyond which a lane's state is moved back near it
-    /// (`Block::recentre`): 2 m in f32, whose positions of tens of metres could not resolve
-    /// a footpad's contact deflection of micrometres; never in f64.
+    /// along the surface (`Block::recentre`): 2 m in f32, whose positions of tens of metres
+    /// could not resolve a footpad's contact deflection of micrometres; never in f64.
     const RECENTRE_M: f64;
     /// Every lane `x` (rounded to the lanes' precision).
     fn splat(x: f64) -> Self;
@@ -62,8 +90,6 @@ pub trait Lane:
     fn lane(&self, i: usize) -> f64;
     /// Sets lane `i` to `x` (rounded to the lanes' precision), outside the kernels.
     fn set_lane(&mut self, i: usize, x: f64);
-    /// Sets lane `i` of the mask `self` to `on`, outside the kernels.
-    fn set_mask_lane(&mut self, i: usize, on: bool);
 
     /// `self * a + b`, fused where the CPU has FMA.
     #[must_use]
@@ -97,36 +123,34 @@ pub trait Lane:
     fn fast_max(self, o: Self) -> Self;
 
     /// Mask: `self == o` (false where either is NaN).
-    fn simd_eq(self, o: Self) -> Self;
+    fn simd_eq(self, o: Self) -> Self::Mask;
     /// Mask: `self < o`.
-    fn simd_lt(self, o: Self) -> Self;
+    fn simd_lt(self, o: Self) -> Self::Mask;
     /// Mask: `self <= o`.
-    fn simd_le(self, o: Self) -> Self;
+    fn simd_le(self, o: Self) -> Self::Mask;
     /// Mask: `self > o`.
-    fn simd_gt(self, o: Self) -> Self;
+    fn simd_gt(self, o: Self) -> Self::Mask;
     /// Mask: `self >= o`.
-    fn simd_ge(self, o: Self) -> Self;
+    fn simd_ge(self, o: Self) -> Self::Mask;
     /// Mask: NaN lanes.
-    fn is_nan(self) -> Self;
-    /// Per lane of the mask `self`: `a` where true, `b` where false.
+    fn is_nan(self) -> Self::Mask;
+    /// Per lane of `mask`: `a` where true, `b` where false (`Mask::select`).
     #[must_use]
-    fn select(self, a: Self, b: Self) -> Self;
-    /// The mask `self` as bits, lane `i` in bit `i`.
-    fn to_bitmask(self) -> u32;
+    fn blend(mask: Self::Mask, a: Self, b: Self) -> Self;
 }
 
-/// All lanes true (all bits set), as masks from comparisons are.
+/// All lanes true.
 #[inline(always)]
 #[must_use]
-pub fn all_true<L: Lane>() -> L {
-    L::ZERO.simd_eq(L::ZERO)
+pub fn all_true<L: Lane>() -> L::Mask {
+    !L::Mask::NONE
 }
 
 /// All lanes false.
 #[inline(always)]
 #[must_use]
-pub fn all_false<L: Lane>() -> L {
-    L::ZERO
+pub fn all_false<L: Lane>() -> L::Mask {
+    L::Mask::NONE
 }
 
 /// `acc.max(x)` for an accumulator `acc` that is never NaN: lanes where `x` is NaN keep

@@ -1,10 +1,11 @@
 //! Outcome tracking over lanes: the reference's `outcome::Tracker::observe`, rule for rule
 //! and in the same order (see there for the rules).
 
-use crate::block::Block;
-use crate::lane::{Lane, all_false, all_true, max_into, min_into};
+use crate::block::{Block, LegStep};
+use crate::lane::{Lane, Mask, all_false, all_true, max_into, min_into};
 use crate::params::Params;
-use crate::vec3::Vec3;
+use crate::step::tip_in_body;
+use crate::vec3::{Mat3, Vec3};
 
 /// Outcome codes, in the order of the reference's `Outcome::ALL`.
 pub const STABLE: f64 = 0.0;
@@ -60,10 +61,24 @@ pub const SLIDE_EDGE_MARGIN: f64 = 1.25;
 /// than the bound allows covers that thousands of times.
 pub const TURN_MARGIN: f64 = 1.1;
 
+/// Puts every footpad's position at the start of the step into `leg_step` (`tip_m`), for
+/// the rules that need them (the step itself finds them only for legs on the surface).
+#[inline(always)]
+fn start_tips<L: Lane, const DAMPERS: bool>(
+    p: &Params<L>,
+    legs: &mut [LegStep<L>],
+    x: Vec3<L>,
+    r: Mat3<L>,
+) {
+    for (leg, step) in p.legs.iter().zip(legs) {
+        step.tip_m = x + r.mul_vec3(tip_in_body::<L, DAMPERS>(leg, step.start_stroke_m));
+    }
+}
+
 /// Mask: every one of `xs` is finite. `x * 0` is 0 for a finite `x` and NaN for an infinite
 /// or NaN one, so the sum of the products is 0 exactly when all are finite.
 #[inline(always)]
-fn all_finite<L: Lane, const N: usize>(xs: [L; N]) -> L {
+fn all_finite<L: Lane, const N: usize>(xs: [L; N]) -> L::Mask {
     let zero = L::splat(0.0);
     xs.iter()
         .fold(zero, |sum, x| x.mul_add(zero, sum))
@@ -73,7 +88,7 @@ fn all_finite<L: Lane, const N: usize>(xs: [L; N]) -> L {
 /// Takes in the step just made; returns the mask of lanes decided by it (their code is in
 /// `block.track.outcome`).
 #[inline(always)]
-pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
+pub fn observe<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut Block<L>) -> L::Mask {
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let active = block.active & block.track.outcome.simd_lt(zero);
@@ -84,7 +99,7 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
     // and never become NaN: `max_into` and `min_into` apply.
     t.peak_acceleration_squared =
         max_into(t.peak_acceleration_squared, acceleration.length_squared());
-    let z_body = block.start_z_body;
+    let z_body = block.start_rotation.z_axis;
     t.peak_acceleration_z = max_into(t.peak_acceleration_z, acceleration.dot(z_body).abs());
     let cos_tilt = z_body.dot(block.surface.normal);
     t.min_cos_tilt = min_into(t.min_cos_tilt, cos_tilt);
@@ -127,19 +142,12 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
         &block.rate_rad_s,
         &block.attitude,
     );
-    let finite = all_finite([
-        x.x, x.y, x.z, v.x, v.y, v.z, w.x, w.y, w.z, q.x, q.y, q.z, q.w,
-    ]);
-    let diverged = !finite
-        | block
-            .velocity_m_s
-            .length_squared()
-            .simd_gt(p.diverged_speed_squared)
-        | block
-            .rate_rad_s
-            .length_squared()
-            .simd_gt(p.diverged_rate_squared)
-        | deepest.simd_gt(p.diverged_penetration_m);
+    // A NaN or infinite velocity or rate fails its bound (every compare with NaN is
+    // false), so only the position and the attitude need the test of finiteness.
+    let bounded = all_finite([x.x, x.y, x.z, q.x, q.y, q.z, q.w])
+        & v.length_squared().simd_le(p.diverged_speed_squared)
+        & w.length_squared().simd_le(p.diverged_rate_squared);
+    let diverged = !bounded | deepest.simd_gt(p.diverged_penetration_m);
 
     // The rest rule's tests of speed, rate and legs, before its tests of the footpads and
     // the support polygon.
@@ -153,11 +161,7 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
             .simd_lt(p.rest_rate_squared)
         & resting.simd_ge(p.rest_contacts);
     let mut inside = !all_false::<L>();
-    let mut tipping = all_false();
-    let quasi_static = block
-        .force_n
-        .length_squared()
-        .simd_le(p.quasi_static_force_squared);
+    let mut tipping = all_false::<L>();
     let two_contacts = contacts.simd_eq(L::splat(2.0));
     // The edges matter only to a lane that may pivot on two footpads (early tipping) or may
     // be at rest (CG over the polygon); a block with neither in any lane (in flight, or
@@ -165,9 +169,19 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
     let pivot_or_rest = (if p.early_tipping {
         two_contacts
     } else {
-        all_false()
+        all_false::<L>()
     }) | slow;
     if !p.edges.is_empty() && pivot_or_rest.to_bitmask() != 0 {
+        start_tips::<L, DAMPERS>(
+            p,
+            &mut block.leg_step,
+            block.start_position_m,
+            block.start_rotation,
+        );
+        let quasi_static = block
+            .force_n
+            .length_squared()
+            .simd_le(p.quasi_static_force_squared);
         let n = block.leg_step.len() as f64;
         let centroid =
             block.leg_step.iter().fold(Vec3::ZERO, |c, l| c + l.tip_m) * L::splat(1.0 / n);
@@ -200,7 +214,7 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
         | (if p.early_tipping {
             tipping
         } else {
-            all_false()
+            all_false::<L>()
         });
 
     let at_rest = slow & stuck & inside;
@@ -214,20 +228,13 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
     t.rest_s = at_rest.select(t.rest_s + block.dt_s, zero);
     let stable = t.rest_s.simd_ge(p.hold_time_s);
     let ended = block.t_s.simd_ge(p.t_max_s);
-    // At t_max, at rest since before this step: its footpads were seen to stick (on the
-    // first step of a rest they are not checked, and a slow slider would pass every other
-    // step).
-    let at_end = (at_rest & in_rest).select(
-        L::splat(STABLE),
-        touching.select(L::splat(SLIDING), L::splat(BOUNCING)),
-    );
 
     // The early rules, in lanes that no rule above decided. (Only blocks with a lane where
     // every footpad slips, or with one in flight, compute them.)
     let open = active & !(diverged | tipped | stable | ended);
     let mut slide = all_false::<L>();
     if p.early_sliding && (all_slipping & open).to_bitmask() != 0 {
-        slide = all_slipping & steady_slide(p, block);
+        slide = all_slipping & steady_slide::<L, DAMPERS>(p, block);
     }
     let mut flight_over = all_false::<L>();
     if p.early_bouncing {
@@ -237,25 +244,35 @@ pub fn observe<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> L {
         }
     }
 
-    let code = diverged.select(
-        L::splat(DIVERGED),
-        tipped.select(
-            L::splat(TIPPED),
-            stable.select(
-                L::splat(STABLE),
-                ended.select(at_end, slide.select(L::splat(SLIDING), L::splat(BOUNCING))),
-            ),
-        ),
-    );
     let decided = active & (diverged | tipped | stable | ended | slide | flight_over);
-    block.track.outcome = decided.select(code, block.track.outcome);
+    // Most steps decide nothing: they need no outcome code.
+    if decided.to_bitmask() != 0 {
+        // At t_max, at rest since before this step: its footpads were seen to stick (on
+        // the first step of a rest they are not checked, and a slow slider would pass every
+        // other step).
+        let at_end = (at_rest & in_rest).select(
+            L::splat(STABLE),
+            touching.select(L::splat(SLIDING), L::splat(BOUNCING)),
+        );
+        let code = diverged.select(
+            L::splat(DIVERGED),
+            tipped.select(
+                L::splat(TIPPED),
+                stable.select(
+                    L::splat(STABLE),
+                    ended.select(at_end, slide.select(L::splat(SLIDING), L::splat(BOUNCING))),
+                ),
+            ),
+        );
+        block.track.outcome = decided.select(code, block.track.outcome);
+    }
     decided
 }
 
 /// Mask: the speed stays below the divergence threshold until `t_max` (the reference's
 /// `speed_bounded`).
 #[inline(always)]
-fn speed_bounded<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+fn speed_bounded<L: Lane>(p: &Params<L>, block: &Block<L>) -> L::Mask {
     let two = L::splat(2.0);
     let g_remaining = p.gravity_m_s2 * (p.t_max_s - block.t_s);
     (two * block.velocity_m_s.length_squared() + two * (g_remaining * g_remaining))
@@ -266,7 +283,7 @@ fn speed_bounded<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
 /// caller checks that every footpad slips). The cheap tests first: a block where no lane
 /// passes them skips the rest.
 #[inline(always)]
-fn steady_slide<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+fn steady_slide<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut Block<L>) -> L::Mask {
     let zero = L::splat(0.0);
     let n = block.surface.normal;
     let steep = (n.x * n.x + n.y * n.y).simd_gt(p.friction_coefficient_squared * (n.z * n.z));
@@ -284,19 +301,25 @@ fn steady_slide<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
     let borne = least.simd_ge(L::splat(SLIDE_LEG_SHARE) / p.leg_count * total);
     let cheap = steep & moving_down & settled & borne & block.active;
     if cheap.to_bitmask() == 0 {
-        return all_false();
+        return all_false::<L>();
     }
     let w = block.rate_rad_s;
     let spin = w.dot(block.rotation.transpose_mul_vec3(n));
     let rocking_squared = w.length_squared() - spin * spin;
     let steady_attitude = rocking_squared.simd_lt(p.rest_rate_squared);
+    start_tips::<L, DAMPERS>(
+        p,
+        &mut block.leg_step,
+        block.start_position_m,
+        block.start_rotation,
+    );
     cheap & steady_attitude & inside_by(p, block) & speed_bounded(p, block)
 }
 
 /// Mask: the CG's foot on the plane lies inside every edge of the support polygon by more
 /// than `SLIDE_EDGE_MARGIN mu h` (the reference's `inside_by`).
 #[inline(always)]
-fn inside_by<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+fn inside_by<L: Lane>(p: &Params<L>, block: &Block<L>) -> L::Mask {
     let zero = L::splat(0.0);
     let n = block.surface.normal;
     let x = block.start_position_m;
@@ -307,7 +330,7 @@ fn inside_by<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
     let centroid =
         legs.iter().fold(Vec3::ZERO, |c, l| c + l.tip_m) * L::splat(1.0 / legs.len() as f64);
     let mut inside = if p.edges.is_empty() {
-        all_false()
+        all_false::<L>()
     } else {
         all_true::<L>()
     };
@@ -324,21 +347,26 @@ fn inside_by<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
 }
 
 /// Mask: a flight that cannot end before `t_max` (the reference's `cannot_return`), on the
-/// state after a step without contact. A block where no lane is above the legs' reach
-/// skips the rest (most flights of a hopping lander stay below it).
+/// state after a step without contact. A block where no lane is above the legs' reach now
+/// and at `t_max` skips the rest (most flights of a hopping lander stay below it, and
+/// most above it come down).
 #[inline(always)]
-fn cannot_return<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+fn cannot_return<L: Lane>(p: &Params<L>, block: &Block<L>) -> L::Mask {
     let zero = L::splat(0.0);
     let n = block.surface.normal;
     let height = n.dot(block.position_m) - p.terrain_top_m - p.leg_reach_m;
     let high = height.simd_gt(zero) & block.active;
     if high.to_bitmask() == 0 {
-        return all_false();
+        return all_false::<L>();
     }
     let remaining = p.t_max_s - block.t_s;
     let fall = L::splat(0.5) * p.gravity_m_s2 * n.z * remaining;
     let height_at_end = height + remaining * (n.dot(block.velocity_m_s) - fall);
     let clear = high & height_at_end.simd_gt(zero);
+    // Nor where none is still above it at t_max (a lander on its way down).
+    if clear.to_bitmask() == 0 {
+        return all_false::<L>();
+    }
     let i = p.inertia_kg_m2;
     let w = block.rate_rad_s;
     let momentum_squared = Vec3::new(i.x * w.x, i.y * w.y, i.z * w.z).length_squared();

@@ -40,6 +40,10 @@ pub struct Params<L> {
     pub inertia_kg_m2: Vec3<L>,
     /// `1 / inertia_kg_m2`, per axis.
     pub inverse_inertia: Vec3<L>,
+    /// `((I_y - I_z) / I_x, (I_z - I_x) / I_y, (I_x - I_y) / I_z)`: Euler's equations are
+    /// `dw_x/dt = M_x / I_x + gyroscopic_x w_y w_z` and cyclic (the reference's
+    /// `rigid_body::gyroscopic`).
+    pub gyroscopic: Vec3<L>,
     pub legs: Vec<LegParams<L>>,
     /// Edges of the support polygon (indices into `legs`).
     pub edges: Vec<[usize; 2]>,

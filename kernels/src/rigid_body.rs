@@ -14,8 +14,8 @@ pub fn integrate<L: Lane>(
     attitude: &mut Quat<L>,
     rate_rad_s: &mut Vec3<L>,
     inverse_mass_per_kg: L,
-    inertia_kg_m2: Vec3<L>,
     inverse_inertia: Vec3<L>,
+    gyroscopic: Vec3<L>,
     gravity_m_s2: L,
     force_n: Vec3<L>,
     moment_n_m: Vec3<L>,
@@ -29,27 +29,28 @@ pub fn integrate<L: Lane>(
     *velocity_m_s = kicked;
     velocity_m_s.z = gravity_m_s2.mul_neg_add(dt, velocity_m_s.z);
 
-    // Euler's equations by the implicit midpoint rule, as the reference.
-    let i = inertia_kg_m2;
+    // Euler's equations by the implicit midpoint rule, as the reference: the rates kicked
+    // by the moment, then each pass one multiply and one multiply-add per axis.
     let w0 = *rate_rad_s;
     let half_dt = L::splat(0.5) * dt;
-    // (dt / 2) / I per axis, once: a pass is then one multiply-add per axis.
     let inv = inverse_inertia;
-    let half_dt_per_i = Vec3::new(inv.x * half_dt, inv.y * half_dt, inv.z * half_dt);
+    let kick = Vec3::new(
+        (inv.x * half_dt).mul_add(moment_n_m.x, w0.x),
+        (inv.y * half_dt).mul_add(moment_n_m.y, w0.y),
+        (inv.z * half_dt).mul_add(moment_n_m.z, w0.z),
+    );
+    let spin = gyroscopic * half_dt;
     let mut mid = w0;
     for _ in 0..MIDPOINT_PASSES {
-        let gyro = mid.cross(Vec3::new(i.x * mid.x, i.y * mid.y, i.z * mid.z));
-        let torque = moment_n_m - gyro;
-        let h = half_dt_per_i;
         mid = Vec3::new(
-            torque.x.mul_add(h.x, w0.x),
-            torque.y.mul_add(h.y, w0.y),
-            torque.z.mul_add(h.z, w0.z),
+            spin.x.mul_add(mid.y * mid.z, kick.x),
+            spin.y.mul_add(mid.z * mid.x, kick.y),
+            spin.z.mul_add(mid.x * mid.y, kick.z),
         );
     }
     *rate_rad_s = mid.mul_add(L::splat(2.0), -w0);
 
-    *attitude = (*attitude * rotation_increment(mid, dt)).normalize();
+    *attitude = (*attitude * rotation_increment(mid, dt)).renormalize();
 }
 
 /// Fixed-point passes of the implicit midpoint rule for the body rates.

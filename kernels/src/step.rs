@@ -1,21 +1,28 @@
 //! The step kernel: every leg's contact, then the rigid body, for `LANES` landers at once,
 //! each with its own step length. The reference's `step` module does the same in scalar.
 
-use crate::block::{Block, LegStep, SurfaceLanes};
+use crate::block::{Block, SurfaceLanes};
 use crate::contact;
-use crate::lane::{Lane, all_false, min_into};
+use crate::lane::{Lane, Mask, all_false, min_into};
 use crate::params::{LegParams, Params};
 use crate::rigid_body;
 use crate::terrain::height_lanes;
 use crate::vec3::Vec3;
 
-/// Penetration below the local surface along the local normal, and that normal.
+/// Penetration below the local surface along the local normal, and that normal, of a
+/// footpad `height` above the base plane (`height_m` of `footpad_heights`), at `tip` on
+/// rough terrain (the plane needs no position: its penetration is `-height`).
 #[inline(always)]
-fn penetration<L: Lane>(p: &Params<L>, s: &SurfaceLanes<L>, tip: Vec3<L>) -> (L, Vec3<L>) {
+fn penetration<L: Lane, const TERRAIN: bool>(
+    p: &Params<L>,
+    s: &SurfaceLanes<L>,
+    tip: impl FnOnce() -> Vec3<L>,
+    height: L,
+) -> (L, Vec3<L>) {
     match &p.terrain {
         // The plane itself: no height, and its normal is already a unit vector.
-        None => (-s.normal.dot(tip), s.normal),
-        Some(t) => {
+        Some(t) if TERRAIN => {
+            let tip = tip();
             let (h, dh_du, dh_dv) = height_lanes(
                 t,
                 &s.tile,
@@ -24,52 +31,74 @@ fn penetration<L: Lane>(p: &Params<L>, s: &SurfaceLanes<L>, tip: Vec3<L>) -> (L,
             );
             let m = s.normal - s.tangent_u * dh_du - s.tangent_v * dh_dv;
             let inv = L::splat(1.0) / m.length();
-            ((h - s.normal.dot(tip)) * inv, m * inv)
+            ((h - height) * inv, m * inv)
         }
+        _ => (-height, s.normal),
     }
 }
 
 /// Footpad position in B: `tip_m - s strut_axis` at stroke `s`. Without dampers the stroke
 /// stays 0 and the footpad where the parameters put it.
 #[inline(always)]
-fn tip_in_body<L: Lane>(p: &Params<L>, leg: &LegParams<L>, stroke_m: L) -> Vec3<L> {
-    if p.honeycomb.is_some() {
+pub(crate) fn tip_in_body<L: Lane, const DAMPERS: bool>(
+    leg: &LegParams<L>,
+    stroke_m: L,
+) -> Vec3<L> {
+    if DAMPERS {
         leg.tip_m - leg.strut_axis * stroke_m
     } else {
         leg.tip_m
     }
 }
 
-/// Advances every lane of `block` by its `dt` (0 for lanes that must not move).
+/// Advances every lane of `block` by its `dt` (0 for lanes that must not move), from the
+/// footpad heights of `footpad_heights`.
 #[inline(always)]
-pub fn step<L: Lane>(p: &Params<L>, block: &mut Block<L>, dt: L) {
+pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool>(
+    p: &Params<L>,
+    block: &mut Block<L>,
+    dt: L,
+) {
     let zero = L::splat(0.0);
     let rotation = block.rotation;
     let rate_i = rotation.mul_vec3(block.rate_rad_s);
     let mut force_n = Vec3::ZERO;
     // Moments about the CG, summed in I and turned into B once: (R a) x (R b) = R (a x b).
     let mut moment_i = Vec3::ZERO;
+    let position = block.position_m;
     let legs = p.legs.iter().zip(&mut block.legs).zip(&mut block.leg_step);
     for ((leg, leg_state), out) in legs {
-        let tip_b = tip_in_body(p, leg, leg_state.stroke_m);
-        let arm = rotation.mul_vec3(tip_b);
-        let tip = block.position_m + arm;
-        let tip_velocity = block.velocity_m_s + rate_i.cross(arm);
-        let (penetration, normal) = penetration(p, &block.surface, tip);
+        let tip_b = tip_in_body::<L, DAMPERS>(leg, leg_state.stroke_m);
+        if DAMPERS {
+            out.start_stroke_m = leg_state.stroke_m;
+        }
+        let (penetration, normal) = penetration::<L, TERRAIN>(
+            p,
+            &block.surface,
+            move || position + rotation.mul_vec3(tip_b),
+            out.height_m,
+        );
         let contact = penetration.simd_gt(zero);
         // As the reference's `if penetration > 0`, for the whole block at once: a leg that
         // no lander (holding a sample) has on the surface adds nothing and forgets its
-        // anchor.
+        // anchor. (Only legs on the surface need the footpad's position and velocity: the
+        // outcome tracking reads the velocity of those alone, and finds the positions
+        // itself where it needs them, `start_tips`.)
         let (normal_n, slipping) = if (contact & block.active).to_bitmask() == 0 {
-            leg_state.anchored = all_false();
-            (zero, all_false())
+            leg_state.anchored = all_false::<L>();
+            (zero, all_false::<L>())
         } else {
+            let arm = rotation.mul_vec3(tip_b);
+            let tip = position + arm;
+            let tip_velocity = block.velocity_m_s + rate_i.cross(arm);
+            out.tip_velocity_m_s = tip_velocity;
             // The strut direction matters to the dampers only.
-            let strut_up = match p.honeycomb {
-                Some(_) => -rotation.mul_vec3(leg.strut_axis),
-                None => Vec3::ZERO,
+            let strut_up = if DAMPERS {
+                -rotation.mul_vec3(leg.strut_axis)
+            } else {
+                Vec3::ZERO
             };
-            let (f, normal_n, slipping) = contact::leg_force(
+            let (f, normal_n, slipping) = contact::leg_force::<L, DAMPERS>(
                 p,
                 dt,
                 contact,
@@ -84,20 +113,16 @@ pub fn step<L: Lane>(p: &Params<L>, block: &mut Block<L>, dt: L) {
             moment_i += arm.cross(f);
             (normal_n, slipping)
         };
-        *out = LegStep {
-            tip_m: tip,
-            tip_velocity_m_s: tip_velocity,
-            penetration_m: penetration,
-            normal_n,
-            slipping,
-        };
+        out.penetration_m = penetration;
+        out.normal_n = normal_n;
+        out.slipping = slipping;
     }
     let moment_n_m = rotation.transpose_mul_vec3(moment_i);
     block.start_t_s = block.t_s;
     block.dt_s = dt;
     block.start_position_m = block.position_m;
     block.start_velocity_m_s = block.velocity_m_s;
-    block.start_z_body = rotation.z_axis;
+    block.start_rotation = rotation;
     block.start_rate_rad_s = block.rate_rad_s;
     block.force_n = force_n;
     block.moment_n_m = moment_n_m;
@@ -107,8 +132,8 @@ pub fn step<L: Lane>(p: &Params<L>, block: &mut Block<L>, dt: L) {
         &mut block.attitude,
         &mut block.rate_rad_s,
         p.inverse_mass_per_kg,
-        p.inertia_kg_m2,
         p.inverse_inertia,
+        p.gyroscopic,
         p.gravity_m_s2,
         force_n,
         moment_n_m,
@@ -131,22 +156,34 @@ pub fn add_time<L: Lane>(t: &mut L, error: &mut L, dt: L) {
     *t = sum;
 }
 
-/// The step every lane takes (see the reference's `step_size`): `step_s` near the surface,
-/// longer in free flight where no footpad can reach the terrain within it; 0 for empty lanes.
+/// Every footpad's height above the base plane at the start of the step, into `leg_step`
+/// (`height_m`), and the least of them: the CG's height plus the footpad's offset from it
+/// along the normal, taken in B, where the footpads are (the reference's `footpad_height`).
+#[inline(always)]
+pub fn footpad_heights<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut Block<L>) -> L {
+    let normal = block.surface.normal;
+    let normal_b = block.rotation.transpose_mul_vec3(normal);
+    let height = normal.dot(block.position_m);
+    let mut lowest = L::splat(f64::INFINITY);
+    let legs = p.legs.iter().zip(&block.legs).zip(&mut block.leg_step);
+    for ((leg, state), out) in legs {
+        out.height_m = height + normal_b.dot(tip_in_body::<L, DAMPERS>(leg, state.stroke_m));
+        lowest = min_into(lowest, out.height_m);
+    }
+    lowest
+}
+
+/// The step every lane takes (see the reference's `step_size`), given the least height of
+/// its footpads above the base plane (`footpad_heights`): `step_s` near the surface,
+/// longer in free flight where no footpad can reach the terrain within it; 0 for empty
+/// lanes.
 #[inline(always)]
 #[must_use]
-pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
+pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>, lowest: L) -> L {
     let remaining = p.t_max_s - block.t_s;
     let mut dt = p.step_s;
     if p.long_flight_steps {
-        let normal = block.surface.normal;
-        let normal_b = block.rotation.transpose_mul_vec3(normal);
-        let height = normal.dot(block.position_m) - p.terrain_top_m;
-        let mut clearance = L::splat(f64::INFINITY);
-        for (leg, state) in p.legs.iter().zip(&block.legs) {
-            let tip_b = tip_in_body(p, leg, state.stroke_m);
-            clearance = min_into(clearance, height + normal_b.dot(tip_b));
-        }
+        let clearance = lowest - p.terrain_top_m;
         // As the reference's `if clearance > 0`: only lanes in free flight need the rest.
         let flying = clearance.simd_gt(L::splat(0.0));
         if (flying & block.active).to_bitmask() != 0 {
@@ -163,29 +200,74 @@ pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>) -> L {
     block.active.select(dt.min(remaining), L::splat(0.0))
 }
 
-/// One step of every lane holding a sample: its step size, the step, the outcome
-/// tracking. Returns `outcome_bits` of the lanes it decided. Each lane type compiles this
-/// inside a function that enables its instruction set (`isa`).
+/// What `advance` did: how many steps it took, and `outcome_bits` of the last one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Advanced {
+    /// Steps taken (at least 1, at most the number asked for).
+    pub steps: u32,
+    /// `outcome_bits` of the last step: 0 when it decided no lane and needs no recentring.
+    pub bits: u32,
+}
+
+/// Up to `steps` steps of every lane holding a sample (each its step size, the step, the
+/// outcome tracking), stopping after the first step that decides a lane or asks for a
+/// lane to be recentred: the caller then takes over, with `bits` saying which lanes.
+/// Each lane type compiles this inside a function that enables its instruction set
+/// (`isa`); a call runs many steps, so the three parts are inlined into one loop and
+/// nothing but the block's state crosses from one step to the next (one call per step,
+/// with the parts as functions of their own, measured 15-19 % slower).
+///
+/// The loop is compiled once for each combination of dampers and rough terrain, and the
+/// parameters pick one: the step then tests for neither (a test per leg and step, and code
+/// that the compiler would otherwise hoist out of the tests: a division per step for
+/// dampers that are not there).
 #[inline(always)]
-pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>) -> u32 {
-    let dt = step_size(p, block);
-    step(p, block, dt);
-    let decided = crate::outcome::observe(p, block);
-    outcome_bits(block, decided)
+pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>, steps: u32) -> Advanced {
+    match (p.honeycomb.is_some(), p.terrain.is_some()) {
+        (false, false) => advance_with::<L, false, false>(p, block, steps),
+        (true, false) => advance_with::<L, true, false>(p, block, steps),
+        (false, true) => advance_with::<L, false, true>(p, block, steps),
+        (true, true) => advance_with::<L, true, true>(p, block, steps),
+    }
+}
+
+/// `advance` with (`DAMPERS`) or without dampers, on rough terrain (`TERRAIN`) or a plane.
+#[inline(always)]
+fn advance_with<L: Lane, const DAMPERS: bool, const TERRAIN: bool>(
+    p: &Params<L>,
+    block: &mut Block<L>,
+    steps: u32,
+) -> Advanced {
+    for taken in 1..=steps {
+        let lowest = footpad_heights::<L, DAMPERS>(p, block);
+        let dt = step_size(p, block, lowest);
+        step::<L, DAMPERS, TERRAIN>(p, block, dt);
+        let decided = crate::outcome::observe::<L, DAMPERS>(p, block);
+        let bits = outcome_bits(block, decided);
+        if bits != 0 {
+            return Advanced { steps: taken, bits };
+        }
+    }
+    Advanced { steps, bits: 0 }
 }
 
 /// What `advance` returns: the lanes decided (mask `decided`) in bits 0-15 (lane `i` in
-/// bit `i`), and in bits 16-31 the undecided lanes whose CG is farther than
-/// `L::RECENTRE_M` from the origin, for `Block::recentre` (never, in f64 lanes).
+/// bit `i`), and in bits 16-31 the undecided lanes whose CG's foot on the base plane is
+/// farther than `L::RECENTRE_M` from the origin, for `Block::recentre` (never, in f64
+/// lanes). The foot, not the CG: recentring moves the origin along the plane, so a lander
+/// high above it would otherwise ask again at every step.
 #[inline(always)]
 #[must_use]
-pub fn outcome_bits<L: Lane>(block: &Block<L>, decided: L) -> u32 {
+pub fn outcome_bits<L: Lane>(block: &Block<L>, decided: L::Mask) -> u32 {
     if L::RECENTRE_M.is_infinite() {
         // f64 lanes: nothing to compute (a constant, so the test costs nothing either).
         return decided.to_bitmask();
     }
     let reach = L::splat(L::RECENTRE_M * L::RECENTRE_M);
-    let far = block.position_m.length_squared().simd_gt(reach) & block.active & !decided;
+    let x = block.position_m;
+    let height = block.surface.normal.dot(x);
+    let along_squared = height.mul_neg_add(height, x.length_squared());
+    let far = along_squared.simd_gt(reach) & block.active & !decided;
     decided.to_bitmask() | (far.to_bitmask() << 16)
 }
 

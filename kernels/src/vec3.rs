@@ -1,7 +1,7 @@
 //! Structure-of-arrays 3-vectors and quaternions over lanes, with the few operations the
 //! physics needs (no trigonometry).
 
-use crate::lane::Lane;
+use crate::lane::{Lane, Mask};
 use crate::params::lane;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
@@ -102,7 +102,7 @@ impl<L: Lane> Vec3<L> {
     /// `mask ? a : b` per lane.
     #[inline(always)]
     #[must_use]
-    pub fn select(mask: L, a: Vec3<L>, b: Vec3<L>) -> Vec3<L> {
+    pub fn select(mask: L::Mask, a: Vec3<L>, b: Vec3<L>) -> Vec3<L> {
         Vec3::new(
             mask.select(a.x, b.x),
             mask.select(a.y, b.y),
@@ -235,21 +235,22 @@ pub struct Quat<L> {
 }
 
 impl<L: Lane> Quat<L> {
-    /// Renormalised to unit length.
+    /// Brought back to unit length by one Newton step, `q (3 - |q|^2) / 2` (the
+    /// reference's `renormalize`: see there).
     #[inline(always)]
     #[must_use]
-    pub fn normalize(self) -> Quat<L> {
+    pub fn renormalize(self) -> Quat<L> {
         let length_squared = self.w.mul_add(
             self.w,
             self.z
                 .mul_add(self.z, self.y.mul_add(self.y, self.x * self.x)),
         );
-        let inv = L::splat(1.0) / length_squared.sqrt();
+        let k = length_squared.mul_neg_add(L::splat(0.5), L::splat(1.5));
         Quat {
-            x: self.x * inv,
-            y: self.y * inv,
-            z: self.z * inv,
-            w: self.w * inv,
+            x: self.x * k,
+            y: self.y * k,
+            z: self.z * k,
+            w: self.w * k,
         }
     }
 

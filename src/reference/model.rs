@@ -265,13 +265,21 @@ impl Surface {
     #[inline]
     #[must_use]
     pub fn penetration(&self, terrain: Option<&Terrain>, p: DVec3) -> (f64, DVec3) {
+        self.penetration_at(terrain, p, self.normal.dot(p))
+    }
+
+    /// `penetration` of `p`, given its height above the base plane (`normal . p`, which
+    /// the step finds another way: `step::footpad_height`).
+    #[inline]
+    #[must_use]
+    pub fn penetration_at(&self, terrain: Option<&Terrain>, p: DVec3, height: f64) -> (f64, DVec3) {
         let Some(terrain) = terrain else {
             // The plane itself: no height, and its normal is already a unit vector.
-            return (-self.normal.dot(p), self.normal);
+            return (-height, self.normal);
         };
         let (h, dh_du, dh_dv) = self.height(Some(terrain), p);
         let m = self.normal - self.tangent_u * dh_du - self.tangent_v * dh_dv;
         let inv = 1.0 / m.length();
-        ((h - self.normal.dot(p)) * inv, m * inv)
+        ((h - height) * inv, m * inv)
     }
 }

@@ -191,15 +191,13 @@ impl Tracker {
         }
 
         let b = &after.body;
-        let finite = b.position_m.is_finite()
-            && b.velocity_m_s.is_finite()
-            && b.rate_rad_s.is_finite()
-            && b.attitude.is_finite();
-        if !finite
-            || b.velocity_m_s.length_squared() > th.diverged_speed_m_s.powi(2)
-            || b.rate_rad_s.length_squared() > th.diverged_rate_rad_s.powi(2)
-            || deepest > th.diverged_penetration_m
-        {
+        // A NaN or infinite velocity or rate fails its bound (every compare with NaN is
+        // false), so only the position and the attitude need the test of finiteness.
+        let bounded = b.position_m.is_finite()
+            && b.attitude.is_finite()
+            && b.velocity_m_s.length_squared() <= th.diverged_speed_m_s.powi(2)
+            && b.rate_rad_s.length_squared() <= th.diverged_rate_rad_s.powi(2);
+        if !bounded || deepest > th.diverged_penetration_m {
             return Some(Outcome::Diverged);
         }
 

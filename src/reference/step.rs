@@ -83,6 +83,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
     let body = state.body;
     let rotation = DMat3::from_quat(body.attitude);
     let rate_i = rotation * body.rate_rad_s;
+    let normal_b = rotation.transpose() * surface.normal;
     let mut force_n = DVec3::ZERO;
     // Moments about the CG, summed in I and turned into B once: (R a) x (R b) = R (a x b).
     let mut moment_i = DVec3::ZERO;
@@ -91,7 +92,8 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
         let arm = rotation * tip_b;
         let tip = body.position_m + arm;
         let tip_velocity = body.velocity_m_s + rate_i.cross(arm);
-        let (penetration, normal) = surface.penetration(model.terrain.as_ref(), tip);
+        let height = footpad_height(surface, &body, normal_b, tip_b);
+        let (penetration, normal) = surface.penetration_at(model.terrain.as_ref(), tip, height);
         let f = if penetration > 0.0 {
             contact::leg_force(
                 &model.contact,
@@ -143,6 +145,14 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
     add_time(&mut state.t_s, &mut state.t_error_s, dt);
 }
 
+/// Height above the base plane of the footpad at `tip_b` (in B): that of the CG, plus the
+/// footpad's offset from the CG along the normal, taken in B, where the footpads are
+/// (`normal_b`, the surface normal in B).
+#[must_use]
+pub fn footpad_height(surface: &Surface, body: &Body, normal_b: DVec3, tip_b: DVec3) -> f64 {
+    surface.normal.dot(body.position_m) + normal_b.dot(tip_b)
+}
+
 /// `t += dt`, compensated (Kahan): `error` keeps what rounding dropped and the next step
 /// adds it back, so the time stays exact to a rounding of `t` however many steps are
 /// summed: plain sums of 1 ms steps in f32 lose 27 ms by t = 70 s and 54 ms by 120 s (every
@@ -166,17 +176,21 @@ pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
     if model.flight_step_max_s > model.step_s {
         let body = &state.body;
         let rotation = DMat3::from_quat(body.attitude);
-        let top = model.terrain_top_m();
-        // Height of a footpad above `top`: that of the CG, plus the footpad's offset from
-        // the CG along the normal (taken in B, where the footpads are).
         let normal_b = rotation.transpose() * surface.normal;
-        let height = surface.normal.dot(body.position_m) - top;
-        let clearance = model
+        let lowest = model
             .legs
             .iter()
             .zip(&state.legs)
-            .map(|(leg, ls)| height + normal_b.dot(leg.tip_m - leg.strut_axis * ls.stroke_m))
+            .map(|(leg, ls)| {
+                footpad_height(
+                    surface,
+                    body,
+                    normal_b,
+                    leg.tip_m - leg.strut_axis * ls.stroke_m,
+                )
+            })
             .fold(f64::INFINITY, f64::min);
+        let clearance = lowest - model.terrain_top_m();
         if clearance > 0.0 {
             let speed = body.velocity_m_s.length() + body.rate_rad_s.length() * model.leg_reach_m();
             // Time to fall `clearance` from `speed` under g: the root of

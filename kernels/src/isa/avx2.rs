@@ -20,7 +20,7 @@ macro_rules! avx2_lane {
     ) => {
         use crate::isa::Kernel;
         use crate::block::Block;
-        use crate::lane::Lane;
+        use crate::lane::{Lane, Mask};
         use crate::params::Params;
         use std::arch::x86_64::*;
         use std::ops::{
@@ -34,6 +34,18 @@ macro_rules! avx2_lane {
         pub struct $lane([$v; 2]);
 
         compiled_kernel!($lane, $name, "avx2,avx,fma,bmi1,bmi2,lzcnt,movbe,popcnt,f16c");
+
+        vector_mask!(
+            $lane,
+            $e,
+            |m| {
+                let [lo, hi] = m.0;
+                #[allow(clippy::cast_sign_loss)]
+                unsafe {
+                    ($movemask(lo) | ($movemask(hi) << ($n / 2))) as u32
+                }
+            }
+        );
 
         /// Applies an intrinsic to both halves.
         macro_rules! halves {
@@ -127,6 +139,7 @@ macro_rules! avx2_lane {
 
         impl Lane for $lane {
             const LANES: usize = $n;
+            type Mask = Self;
             const ZERO: Self = Self(unsafe { std::mem::transmute::<[$e; $n], [$v; 2]>([0.0; $n]) });
             const MIN_POSITIVE: f64 = <$e>::MIN_POSITIVE as f64;
 
@@ -187,14 +200,8 @@ macro_rules! avx2_lane {
                 halves!($cmp::<_CMP_UNORD_Q>, self, self)
             }
             #[inline(always)]
-            fn select(self, a: Self, b: Self) -> Self {
-                halves!($blendv, b, a, self)
-            }
-            #[inline(always)]
-            #[allow(clippy::cast_sign_loss)]
-            fn to_bitmask(self) -> u32 {
-                let [lo, hi] = self.0;
-                unsafe { ($movemask(lo) | ($movemask(hi) << ($n / 2))) as u32 }
+            fn blend(mask: Self, a: Self, b: Self) -> Self {
+                halves!($blendv, b, a, mask)
             }
         }
     };

@@ -8,21 +8,20 @@ x86_features!(
     "bmi2", "lzcnt", "movbe", "popcnt", "f16c"
 );
 
-/// The lane type `$lane` of `$n` lanes of `$e` in one register `$v`, its compare masks of
-/// type `$k`, with the intrinsics of its precision.
+/// The lane type `$lane` of `$n` lanes of `$e` in one register `$v`, its masks `$mask` in
+/// a mask register `$k` (a bit a lane), with the intrinsics of its precision.
 macro_rules! avx512_lane {
     (
-        $(#[$doc:meta])* $lane:ident, $name:literal, $v:ty, $e:ty, $n:literal, $k:ty,
-        set1 $set1:ident, set1_int $set1_int:ident, int_to_float $int_to_float:ident,
-        float_to_int $float_to_int:ident, maskz_mov $maskz_mov:ident, to_mask $to_mask:ident,
-        add $add:ident, sub $sub:ident, mul $mul:ident, div $div:ident, and $and:ident,
-        or $or:ident, xor $xor:ident, andnot $andnot:ident, fmadd $fmadd:ident, fmsub $fmsub:ident,
+        $(#[$doc:meta])* $lane:ident, $name:literal, $v:ty, $e:ty, $n:literal, $mask:ident, $k:ty,
+        set1 $set1:ident,
+        add $add:ident, sub $sub:ident, mul $mul:ident, div $div:ident,
+        xor $xor:ident, andnot $andnot:ident, fmadd $fmadd:ident, fmsub $fmsub:ident,
         fnmadd $fnmadd:ident, fnmsub $fnmsub:ident, sqrt $sqrt:ident, min $min:ident,
         max $max:ident, cmp $cmp:ident, blend $blend:ident
     ) => {
         use crate::isa::Kernel;
         use crate::block::Block;
-        use crate::lane::Lane;
+        use crate::lane::{Lane, Mask};
         use crate::params::Params;
         use std::arch::x86_64::*;
         use std::ops::{
@@ -41,16 +40,58 @@ macro_rules! avx512_lane {
             "avx512f,avx512dq,avx512bw,avx512vl,avx512cd,avx2,avx,fma,bmi1,bmi2,lzcnt,movbe,popcnt,f16c"
         );
 
-        /// A mask vector (all bits of a lane set) from a compare mask.
-        #[inline(always)]
-        fn widen(k: $k) -> $v {
-            unsafe { $maskz_mov(k, $int_to_float($set1_int(-1))) }
+        /// A truth value per lane of `$lane`: a bit a lane, as compares leave them in a
+        /// mask register and masked instructions take them.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        #[repr(transparent)]
+        pub struct $mask($k);
+
+        macro_rules! mask_binary {
+            ($trait:ident, $f:ident, $assign:ident, $fa:ident, $op:tt) => {
+                impl $trait for $mask {
+                    type Output = Self;
+                    #[inline(always)]
+                    fn $f(self, o: Self) -> Self {
+                        Self(self.0 $op o.0)
+                    }
+                }
+                impl $assign for $mask {
+                    #[inline(always)]
+                    fn $fa(&mut self, o: Self) {
+                        *self = $trait::$f(*self, o);
+                    }
+                }
+            };
+        }
+        mask_binary!(BitAnd, bitand, BitAndAssign, bitand_assign, &);
+        mask_binary!(BitOr, bitor, BitOrAssign, bitor_assign, |);
+
+        impl Not for $mask {
+            type Output = Self;
+            #[inline(always)]
+            fn not(self) -> Self {
+                Self(!self.0)
+            }
         }
 
-        /// The compare mask of a mask vector (its sign bits).
-        #[inline(always)]
-        fn narrow(m: $v) -> $k {
-            unsafe { $to_mask($float_to_int(m)) }
+        impl Mask for $mask {
+            const NONE: Self = Self(0);
+            #[inline(always)]
+            fn to_bitmask(self) -> u32 {
+                u32::from(self.0)
+            }
+            #[inline(always)]
+            fn lane(&self, i: usize) -> bool {
+                self.0 >> i & 1 != 0
+            }
+            #[inline(always)]
+            fn set_lane(&mut self, i: usize, on: bool) {
+                if on {
+                    self.0 |= 1 << i;
+                } else {
+                    self.0 &= !(1 << i);
+                }
+            }
         }
 
         macro_rules! binary {
@@ -73,8 +114,6 @@ macro_rules! avx512_lane {
         binary!(Add, add, AddAssign, add_assign, $add);
         binary!(Sub, sub, SubAssign, sub_assign, $sub);
         binary!(Mul, mul, MulAssign, mul_assign, $mul);
-        binary!(BitAnd, bitand, BitAndAssign, bitand_assign, $and);
-        binary!(BitOr, bitor, BitOrAssign, bitor_assign, $or);
 
         impl Div for $lane {
             type Output = Self;
@@ -89,14 +128,6 @@ macro_rules! avx512_lane {
             #[inline(always)]
             fn neg(self) -> Self {
                 Self(unsafe { $xor(self.0, $set1(-0.0)) })
-            }
-        }
-
-        impl Not for $lane {
-            type Output = Self;
-            #[inline(always)]
-            fn not(self) -> Self {
-                Self(unsafe { $xor(self.0, $int_to_float($set1_int(-1))) })
             }
         }
 
@@ -116,14 +147,15 @@ macro_rules! avx512_lane {
         macro_rules! compare {
             ($f:ident, $op:ident) => {
                 #[inline(always)]
-                fn $f(self, o: Self) -> Self {
-                    Self(widen(unsafe { $cmp::<$op>(self.0, o.0) }))
+                fn $f(self, o: Self) -> $mask {
+                    $mask(unsafe { $cmp::<$op>(self.0, o.0) })
                 }
             };
         }
 
         impl Lane for $lane {
             const LANES: usize = $n;
+            type Mask = $mask;
             const ZERO: Self = Self(unsafe { std::mem::transmute::<[$e; $n], $v>([0.0; $n]) });
             const MIN_POSITIVE: f64 = <$e>::MIN_POSITIVE as f64;
 
@@ -180,16 +212,12 @@ macro_rules! avx512_lane {
             compare!(simd_gt, _CMP_GT_OQ);
             compare!(simd_ge, _CMP_GE_OQ);
             #[inline(always)]
-            fn is_nan(self) -> Self {
-                Self(widen(unsafe { $cmp::<_CMP_UNORD_Q>(self.0, self.0) }))
+            fn is_nan(self) -> $mask {
+                $mask(unsafe { $cmp::<_CMP_UNORD_Q>(self.0, self.0) })
             }
             #[inline(always)]
-            fn select(self, a: Self, b: Self) -> Self {
-                Self(unsafe { $blend(narrow(self.0), b.0, a.0) })
-            }
-            #[inline(always)]
-            fn to_bitmask(self) -> u32 {
-                u32::from(narrow(self.0))
+            fn blend(mask: $mask, a: Self, b: Self) -> Self {
+                Self(unsafe { $blend(mask.0, b.0, a.0) })
             }
         }
     };
@@ -200,12 +228,10 @@ pub mod f64x8 {
     avx512_lane!(
         /// Eight f64 lanes in a `__m512d`. Only made on a CPU with the features of
         /// `FEATURES`.
-        F64x8Avx512, "f64x8 AVX-512", __m512d, f64, 8, __mmask8,
-        set1 _mm512_set1_pd, set1_int _mm512_set1_epi64, int_to_float _mm512_castsi512_pd,
-        float_to_int _mm512_castpd_si512, maskz_mov _mm512_maskz_mov_pd,
-        to_mask _mm512_movepi64_mask,
+        F64x8Avx512, "f64x8 AVX-512", __m512d, f64, 8, K8, __mmask8,
+        set1 _mm512_set1_pd,
         add _mm512_add_pd, sub _mm512_sub_pd, mul _mm512_mul_pd, div _mm512_div_pd,
-        and _mm512_and_pd, or _mm512_or_pd, xor _mm512_xor_pd, andnot _mm512_andnot_pd, fmadd _mm512_fmadd_pd,
+        xor _mm512_xor_pd, andnot _mm512_andnot_pd, fmadd _mm512_fmadd_pd,
         fmsub _mm512_fmsub_pd, fnmadd _mm512_fnmadd_pd, fnmsub _mm512_fnmsub_pd,
         sqrt _mm512_sqrt_pd, min _mm512_min_pd, max _mm512_max_pd, cmp _mm512_cmp_pd_mask,
         blend _mm512_mask_blend_pd
@@ -217,12 +243,10 @@ pub mod f32x16 {
     avx512_lane!(
         /// Sixteen f32 lanes in a `__m512`. Only made on a CPU with the features of
         /// `FEATURES`.
-        F32x16Avx512, "f32x16 AVX-512", __m512, f32, 16, __mmask16,
-        set1 _mm512_set1_ps, set1_int _mm512_set1_epi32, int_to_float _mm512_castsi512_ps,
-        float_to_int _mm512_castps_si512, maskz_mov _mm512_maskz_mov_ps,
-        to_mask _mm512_movepi32_mask,
+        F32x16Avx512, "f32x16 AVX-512", __m512, f32, 16, K16, __mmask16,
+        set1 _mm512_set1_ps,
         add _mm512_add_ps, sub _mm512_sub_ps, mul _mm512_mul_ps, div _mm512_div_ps,
-        and _mm512_and_ps, or _mm512_or_ps, xor _mm512_xor_ps, andnot _mm512_andnot_ps, fmadd _mm512_fmadd_ps,
+        xor _mm512_xor_ps, andnot _mm512_andnot_ps, fmadd _mm512_fmadd_ps,
         fmsub _mm512_fmsub_ps, fnmadd _mm512_fnmadd_ps, fnmsub _mm512_fnmsub_ps,
         sqrt _mm512_sqrt_ps, min _mm512_min_ps, max _mm512_max_ps, cmp _mm512_cmp_ps_mask,
         blend _mm512_mask_blend_ps

@@ -41,9 +41,9 @@ macro_rules! x86_features {
 }
 
 /// The kernel of lane type `$lane` (named `$name`, multiply-adds fused), compiled for the
-/// CPU features `$features` (a string literal, as `#[target_feature]` takes it):
-/// `step_size`, `step` and `observe` as functions of their own (so that a profile names
-/// them), `advance`, which runs them, and the lane type's `Kernel`, `Debug` and `PartialEq`.
+/// CPU features `$features` (a string literal, as `#[target_feature]` takes it): `advance`
+/// (`step::advance`, its loop and everything in it compiled for those features), and the
+/// lane type's `Kernel`, `Debug` and `PartialEq`.
 #[cfg(target_arch = "x86_64")]
 macro_rules! compiled_kernel {
     ($lane:ty, $name:literal, $features:literal) => {
@@ -51,9 +51,13 @@ macro_rules! compiled_kernel {
             const NAME: &'static str = $name;
             const FUSED: bool = true;
             #[inline]
-            fn advance(p: &Params<Self>, block: &mut Block<Self>) -> u32 {
+            fn advance(
+                p: &Params<Self>,
+                block: &mut Block<Self>,
+                steps: u32,
+            ) -> crate::step::Advanced {
                 // A value of this type exists only where `available()` held (see `Isa`).
-                unsafe { advance(p, block) }
+                unsafe { advance(p, block, steps) }
             }
         }
 
@@ -69,41 +73,22 @@ macro_rules! compiled_kernel {
             }
         }
 
-        /// One step of every lane holding a sample; the lanes it decided as bits.
+        /// `step::advance` compiled for this lane type's instruction set.
         ///
         /// # Safety
         /// The CPU must have the features of `FEATURES` (`available()`).
         #[target_feature(enable = $features)]
-        unsafe fn advance(p: &Params<$lane>, block: &mut Block<$lane>) -> u32 {
-            unsafe {
-                let dt = step_size(p, block);
-                step(p, block, dt);
-                let decided = observe(p, block);
-                crate::step::outcome_bits(block, decided)
-            }
-        }
-
-        #[target_feature(enable = $features)]
-        #[inline(never)]
-        unsafe fn step_size(p: &Params<$lane>, block: &Block<$lane>) -> $lane {
-            crate::step::step_size(p, block)
-        }
-
-        #[target_feature(enable = $features)]
-        #[inline(never)]
-        unsafe fn step(p: &Params<$lane>, block: &mut Block<$lane>, dt: $lane) {
-            crate::step::step(p, block, dt);
-        }
-
-        #[target_feature(enable = $features)]
-        #[inline(never)]
-        unsafe fn observe(p: &Params<$lane>, block: &mut Block<$lane>) -> $lane {
-            crate::outcome::observe(p, block)
+        unsafe fn advance(
+            p: &Params<$lane>,
+            block: &mut Block<$lane>,
+            steps: u32,
+        ) -> crate::step::Advanced {
+            crate::step::advance(p, block, steps)
         }
     };
 }
 
-/// `RECENTRE_M`, and `lane`, `set_lane` and `set_mask_lane` of a `Lane` impl, through the
+/// `RECENTRE_M`, and `lane` and `set_lane` of a `Lane` impl, through the
 /// lane type's `as_array` and `as_mut_array` of lanes of `$e` (memory, no instruction of
 /// the kernel's set: these run outside the kernels).
 macro_rules! lane_access {
@@ -124,9 +109,29 @@ macro_rules! lane_access {
                 self.as_mut_array()[i] = x as $e;
             }
         }
-        #[inline(always)]
-        fn set_mask_lane(&mut self, i: usize, on: bool) {
-            self.as_mut_array()[i] = if on { <$e>::from_bits(!0) } else { 0.0 };
+    };
+}
+
+/// `Mask` for the lane type `$lane` of lanes of `$e` whose masks are lane values, every bit
+/// of a lane set (true) or clear (false), as its comparisons return them (AVX2 and the
+/// portable types), with `$to_bitmask` turning one into bits.
+macro_rules! vector_mask {
+    ($lane:ty, $e:ty, |$m:ident| $to_bitmask:expr) => {
+        impl crate::lane::Mask for $lane {
+            const NONE: Self = <Self as crate::lane::Lane>::ZERO;
+            #[inline(always)]
+            fn to_bitmask(self) -> u32 {
+                let $m = self;
+                $to_bitmask
+            }
+            #[inline(always)]
+            fn lane(&self, i: usize) -> bool {
+                self.as_array()[i].to_bits() != 0
+            }
+            #[inline(always)]
+            fn set_lane(&mut self, i: usize, on: bool) {
+                self.as_mut_array()[i] = if on { <$e>::from_bits(!0) } else { 0.0 };
+            }
         }
     };
 }
@@ -148,10 +153,10 @@ pub trait Kernel: Lane {
     /// Whether multiply-adds are fused (rounded once): kernels that agree here give the
     /// same bits.
     const FUSED: bool;
-    /// One step of every lane holding a sample (`step_size`, `step`, `observe`); returns
-    /// the lanes it decided as bits (lane `i` in bit `i`), and the lanes to recentre in
-    /// bits 16-31 (`step::outcome_bits`).
-    fn advance(p: &Params<Self>, block: &mut Block<Self>) -> u32;
+    /// Up to `steps` steps of every lane holding a sample (`step::advance`): stops after
+    /// the first step that decides a lane (bit `i` of `bits` for lane `i`) or asks for one
+    /// to be recentred (bits 16-31, `step::outcome_bits`).
+    fn advance(p: &Params<Self>, block: &mut Block<Self>, steps: u32) -> crate::step::Advanced;
 }
 
 /// Something to run with whichever kernel was chosen (a generic closure).

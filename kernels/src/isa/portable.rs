@@ -24,13 +24,20 @@ macro_rules! portable_lane {
             };
             const FUSED: bool = !cfg!(target_arch = "x86_64") || cfg!(target_feature = "fma");
             #[inline(never)]
-            fn advance(p: &Params<Self>, block: &mut Block<Self>) -> u32 {
-                crate::step::advance(p, block)
+            fn advance(
+                p: &Params<Self>,
+                block: &mut Block<Self>,
+                steps: u32,
+            ) -> crate::step::Advanced {
+                crate::step::advance(p, block, steps)
             }
         }
 
+        vector_mask!($t, $e, |m| $t::to_bitmask(m));
+
         impl Lane for $t {
             const LANES: usize = $n;
+            type Mask = Self;
             const ZERO: Self = $t::ZERO;
             const MIN_POSITIVE: f64 = <$e>::MIN_POSITIVE as f64;
 
@@ -105,12 +112,8 @@ macro_rules! portable_lane {
                 $t::is_nan(self)
             }
             #[inline(always)]
-            fn select(self, a: Self, b: Self) -> Self {
-                $t::select(self, a, b)
-            }
-            #[inline(always)]
-            fn to_bitmask(self) -> u32 {
-                $t::to_bitmask(self)
+            fn blend(mask: Self, a: Self, b: Self) -> Self {
+                $t::select(mask, a, b)
             }
         }
     };
