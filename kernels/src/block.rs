@@ -104,9 +104,8 @@ pub struct Block<L: Lane> {
     pub active: L::Mask,
     /// The current step of every leg (scratch, overwritten by every step).
     pub leg_step: Vec<LegStep<L>>,
-    /// Contact force (I) and moment (B) of the current step, and the body at its start.
+    /// Contact force (I) of the current step, and the body at its start.
     pub force_n: Vec3<L>,
-    pub moment_n_m: Vec3<L>,
     pub start_position_m: Vec3<L>,
     pub start_velocity_m_s: Vec3<L>,
     /// The rotation at the start of the step.
@@ -199,7 +198,6 @@ impl<L: Lane> Block<L> {
             active: all_false::<L>(),
             leg_step: vec![leg_step; params.legs.len()],
             force_n: Vec3::ZERO,
-            moment_n_m: Vec3::ZERO,
             start_position_m: Vec3::ZERO,
             start_velocity_m_s: Vec3::ZERO,
             start_rotation: Mat3 {

@@ -50,7 +50,10 @@ pub fn integrate<L: Lane>(
     }
     *rate_rad_s = mid.mul_add(L::splat(2.0), -w0);
 
-    *attitude = (*attitude * rotation_increment(mid, dt)).renormalize();
+    let increment = rotation_increment(mid, dt);
+    // |q dq|^2 = |q|^2 |dq|^2: the norms of the factors, found while the product is formed.
+    let length_squared = attitude.length_squared() * increment.length_squared();
+    *attitude = (*attitude * increment).renormalize(length_squared);
 }
 
 /// Fixed-point passes of the implicit midpoint rule for the body rates.
@@ -61,18 +64,13 @@ pub const MIDPOINT_PASSES: usize = 3;
 #[must_use]
 pub fn rotation_increment<L: Lane>(w: Vec3<L>, dt: L) -> Quat<L> {
     let half = L::splat(0.5) * dt;
-    let theta2 = w.length_squared() * half * half;
-    let t4 = theta2 * theta2;
-    let t6 = t4 * theta2;
-    // 1 - theta2 / 2 + t4 / 24 - t6 / 720, term after term, each fused with the sum before.
+    let theta2 = w.length_squared() * (half * half);
+    // 1 - theta2 (c2 - theta2 (c4 - theta2 c6)), from the inside out, each step one fused
+    // multiply-add.
     let series = |c2: f64, c4: f64, c6: f64| {
-        t6.mul_neg_add(
-            L::splat(c6),
-            t4.mul_add(
-                L::splat(c4),
-                theta2.mul_neg_add(L::splat(c2), L::splat(1.0)),
-            ),
-        )
+        let inner = theta2.mul_neg_add(L::splat(c6), L::splat(c4));
+        let inner = theta2.mul_neg_add(inner, L::splat(c2));
+        theta2.mul_neg_add(inner, L::splat(1.0))
     };
     let cos = series(1.0 / 2.0, 1.0 / 24.0, 1.0 / 720.0);
     let sinc = series(1.0 / 6.0, 1.0 / 120.0, 1.0 / 5040.0);

@@ -125,7 +125,6 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool>(
     block.start_rotation = rotation;
     block.start_rate_rad_s = block.rate_rad_s;
     block.force_n = force_n;
-    block.moment_n_m = moment_n_m;
     rigid_body::integrate(
         &mut block.position_m,
         &mut block.velocity_m_s,

@@ -235,16 +235,22 @@ pub struct Quat<L> {
 }
 
 impl<L: Lane> Quat<L> {
-    /// Brought back to unit length by one Newton step, `q (3 - |q|^2) / 2` (the
-    /// reference's `renormalize`: see there).
+    /// `|q|^2`.
     #[inline(always)]
     #[must_use]
-    pub fn renormalize(self) -> Quat<L> {
-        let length_squared = self.w.mul_add(
+    pub fn length_squared(self) -> L {
+        self.w.mul_add(
             self.w,
             self.z
                 .mul_add(self.z, self.y.mul_add(self.y, self.x * self.x)),
-        );
+        )
+    }
+
+    /// Brought back to unit length by one Newton step, `q (3 - |q|^2) / 2`, given `|q|^2`
+    /// (the reference's `renormalize`: see there).
+    #[inline(always)]
+    #[must_use]
+    pub fn renormalize(self, length_squared: L) -> Quat<L> {
         let k = length_squared.mul_neg_add(L::splat(0.5), L::splat(1.5));
         Quat {
             x: self.x * k,
