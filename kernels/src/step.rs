@@ -186,11 +186,14 @@ pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>, lowest: L) -> L {
         // As the reference's `if clearance > 0`: only lanes in free flight need the rest.
         let flying = clearance.simd_gt(L::splat(0.0));
         if (flying & block.active).to_bitmask() != 0 {
-            let speed = block.velocity_m_s.length() + block.rate_rad_s.length() * p.leg_reach_m;
-            let reach = L::splat(2.0) * clearance
-                / (speed + (speed * speed + L::splat(2.0) * p.gravity_m_s2 * clearance).sqrt());
+            // As the reference: half the clearance over the fastest approach within a
+            // longest flight step.
+            let speed = block.rate_rad_s.length().mul_add(
+                p.leg_reach_m,
+                block.velocity_m_s.length() + p.gravity_m_s2 * p.flight_step_max_s,
+            );
             // (The bounds are never NaN: `fast_` versions give the same.)
-            let free = (L::splat(0.5) * reach)
+            let free = (L::splat(0.5) * clearance / speed)
                 .fast_max(p.step_s)
                 .fast_min(p.flight_step_max_s);
             dt = flying.select(free, dt);

@@ -166,9 +166,9 @@ pub fn add_time(t: &mut f64, error: &mut f64, dt: f64) {
 }
 
 /// The step to take from `state`: `step_s` near the surface; in free flight up to
-/// `flight_step_max_s`, but only half the time in which any footpad could reach the highest
-/// point of the terrain, moving at the CG speed plus rate times leg reach and accelerated by
-/// gravity. Never beyond `t_max_s`.
+/// `flight_step_max_s`, but only half the time in which a footpad could reach the highest
+/// point of the terrain, approaching at the CG speed plus rate times leg reach plus the
+/// speed gravity adds within a longest flight step. Never beyond `t_max_s`.
 #[must_use]
 pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
     let remaining = model.t_max_s - state.t_s;
@@ -192,12 +192,14 @@ pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
             .fold(f64::INFINITY, f64::min);
         let clearance = lowest - model.terrain_top_m();
         if clearance > 0.0 {
-            let speed = body.velocity_m_s.length() + body.rate_rad_s.length() * model.leg_reach_m();
-            // Time to fall `clearance` from `speed` under g: the root of
-            // speed t + g t^2 / 2 = clearance, in a form that holds for g = 0.
-            let reach = 2.0 * clearance
-                / (speed + (speed * speed + 2.0 * model.gravity_m_s2 * clearance).sqrt());
-            dt = (0.5 * reach).clamp(model.step_s, model.flight_step_max_s);
+            // The footpads approach the terrain no faster than the CG's speed plus the rate
+            // times the leg reach, plus what gravity adds within a longest flight step: in a
+            // step `dt` of at most that length they cover at most `speed dt`, and half the
+            // time to cover the clearance at `speed` keeps them off the terrain by half of
+            // it. (No root of the fall under gravity: one division, no square root.)
+            let speed = body.rate_rad_s.length() * model.leg_reach_m()
+                + (body.velocity_m_s.length() + model.gravity_m_s2 * model.flight_step_max_s);
+            dt = (0.5 * clearance / speed).clamp(model.step_s, model.flight_step_max_s);
         }
     }
     dt.min(remaining)
