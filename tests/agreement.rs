@@ -261,7 +261,7 @@ fn kernels_agree_with_the_reference() {
         );
         // f64 lanes round as the reference does, up to the order of sums: few samples
         // drift. f32 lanes round 2^29 times coarser, and a lander's bounces amplify it:
-        // measured 3.6-3.7 % (253-256 of 7000) drift in f32 in the three instruction sets.
+        // measured 3.6-3.7 % (252-257 of 7000) drift in f32 in the three instruction sets.
         // A defect of the f32 lanes (a constant rounded to 0, a threshold lost) shifts
         // results in most samples that meet it, not a few percent.
         let limit = match kernel.precision {
