@@ -1,0 +1,268 @@
+//! The `[inputs]` table: the distribution of every sampled input.
+
+use super::ScenarioError;
+use super::reader::Reader;
+use toml::Value;
+
+/// How an input is drawn for each sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Dist {
+    /// Always this value.
+    Fixed(f64),
+    /// Uniform on `[min, max]`.
+    Uniform { min: f64, max: f64 },
+    /// Normal, truncated to `[min, max]` (infinite bounds: not truncated).
+    Normal {
+        mean: f64,
+        sd: f64,
+        min: f64,
+        max: f64,
+    },
+    /// `count` evenly spaced values from `min` to `max`; several grid inputs form their
+    /// cartesian product, the last one varying fastest with the sample index.
+    Grid { min: f64, max: f64, count: u64 },
+}
+
+impl Dist {
+    /// The smallest and largest value the distribution can produce.
+    #[must_use]
+    pub fn support(&self) -> (f64, f64) {
+        match *self {
+            Dist::Fixed(x) => (x, x),
+            Dist::Uniform { min, max } | Dist::Grid { min, max, .. } => (min, max),
+            Dist::Normal { min, max, .. } => (min, max),
+        }
+    }
+}
+
+/// The inputs that every sample draws, in the order they are drawn and written.
+/// `T` is `Dist` in a scenario and `f64` in a sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inputs<T> {
+    /// Slope angle from horizontal, deg.
+    pub slope_deg: T,
+    /// Downhill direction, measured in the X_I Y_I plane from X_I (the lander's yaw is 0), deg.
+    pub downhill_azimuth_deg: T,
+    /// Height of the ballistic fall before touchdown, m (touchdown speed `sqrt(2 g0 h)`).
+    pub release_height_m: T,
+    /// Residual velocity error along X of the attitude reference frame, m/s.
+    pub velocity_error_x_m_s: T,
+    /// Residual velocity error along Y, m/s.
+    pub velocity_error_y_m_s: T,
+    /// Residual velocity error along Z, m/s.
+    pub velocity_error_z_m_s: T,
+    /// Roll error `phi`, deg.
+    pub roll_deg: T,
+    /// Pitch error `theta`, deg.
+    pub pitch_deg: T,
+    /// Yaw `psi`, deg.
+    pub yaw_deg: T,
+    /// Residual body rate about X_B, deg/s.
+    pub rate_x_deg_s: T,
+    /// Residual body rate about Y_B, deg/s.
+    pub rate_y_deg_s: T,
+    /// Residual body rate about Z_B, deg/s.
+    pub rate_z_deg_s: T,
+}
+
+/// Names and units of the sampled inputs, in drawing order.
+pub const INPUT_FIELDS: [(&str, &str); 12] = [
+    ("slope_deg", "deg"),
+    ("downhill_azimuth_deg", "deg"),
+    ("release_height_m", "m"),
+    ("velocity_error_x_m_s", "m/s"),
+    ("velocity_error_y_m_s", "m/s"),
+    ("velocity_error_z_m_s", "m/s"),
+    ("roll_deg", "deg"),
+    ("pitch_deg", "deg"),
+    ("yaw_deg", "deg"),
+    ("rate_x_deg_s", "deg/s"),
+    ("rate_y_deg_s", "deg/s"),
+    ("rate_z_deg_s", "deg/s"),
+];
+
+impl<T: Copy> Inputs<T> {
+    /// The inputs in the order of `INPUT_FIELDS`.
+    #[must_use]
+    pub fn to_array(&self) -> [T; 12] {
+        [
+            self.slope_deg,
+            self.downhill_azimuth_deg,
+            self.release_height_m,
+            self.velocity_error_x_m_s,
+            self.velocity_error_y_m_s,
+            self.velocity_error_z_m_s,
+            self.roll_deg,
+            self.pitch_deg,
+            self.yaw_deg,
+            self.rate_x_deg_s,
+            self.rate_y_deg_s,
+            self.rate_z_deg_s,
+        ]
+    }
+
+    /// The inverse of `to_array`.
+    #[must_use]
+    pub fn from_array(a: [T; 12]) -> Self {
+        Inputs {
+            slope_deg: a[0],
+            downhill_azimuth_deg: a[1],
+            release_height_m: a[2],
+            velocity_error_x_m_s: a[3],
+            velocity_error_y_m_s: a[4],
+            velocity_error_z_m_s: a[5],
+            roll_deg: a[6],
+            pitch_deg: a[7],
+            yaw_deg: a[8],
+            rate_x_deg_s: a[9],
+            rate_y_deg_s: a[10],
+            rate_z_deg_s: a[11],
+        }
+    }
+}
+
+/// The range an input must stay in, for validation.
+#[derive(Clone, Copy)]
+struct Range {
+    min: f64,
+    max: f64,
+    max_open: bool,
+    text: &'static str,
+}
+
+impl Range {
+    fn holds(&self, x: f64) -> bool {
+        x >= self.min && (x < self.max || (!self.max_open && x <= self.max))
+    }
+}
+
+const ANY: Range = Range {
+    min: f64::NEG_INFINITY,
+    max: f64::INFINITY,
+    max_open: false,
+    text: "any finite value",
+};
+
+pub(super) fn read_inputs(
+    top: &mut Reader,
+    d: &Inputs<Dist>,
+) -> Result<Inputs<Dist>, ScenarioError> {
+    let Some(mut r) = top.table("inputs")? else {
+        return Ok(*d);
+    };
+    let ranges = [
+        Range {
+            min: 0.0,
+            max: 90.0,
+            max_open: true,
+            text: "values from 0 up to, not including, 90 deg",
+        },
+        ANY,
+        Range {
+            min: 0.0,
+            max: f64::INFINITY,
+            max_open: false,
+            text: "values of at least 0 m",
+        },
+        ANY,
+        ANY,
+        ANY,
+        ANY,
+        ANY,
+        ANY,
+        ANY,
+        ANY,
+        ANY,
+    ];
+    let defaults = d.to_array();
+    let mut out = defaults;
+    for (i, (name, _)) in INPUT_FIELDS.iter().enumerate() {
+        if let Some(v) = r.take(name) {
+            out[i] = read_dist(&r, name, &v, &ranges[i])?;
+        }
+    }
+    r.finish()?;
+    Ok(Inputs::from_array(out))
+}
+
+/// Reads a number or a `{ dist = ..., ... }` table.
+fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, ScenarioError> {
+    let allowed_forms = "a number, or { dist = \"fixed\", value = x }, { dist = \"uniform\", min = a, max = b }, \
+        { dist = \"normal\", mean = m, sd = s } with optional min and max to truncate it, \
+        or { dist = \"grid\", min = a, max = b, count = n }";
+    let dist = match v {
+        Value::Float(_) | Value::Integer(_) => Dist::Fixed(r.number(key, v)?),
+        Value::Table(t) => {
+            let mut t = Reader::new(&r.key_path(key), t.clone());
+            let kind = t.word("dist", "", &["fixed", "uniform", "normal", "grid"])?;
+            let need = |t: &mut Reader, k: &'static str| -> Result<f64, ScenarioError> {
+                if !t.has(k) {
+                    return Err(r.error(key, v, &format!("`{k}` in a {kind:?} distribution")));
+                }
+                t.f64(k, 0.0)
+            };
+            let dist = match kind {
+                "fixed" => Dist::Fixed(need(&mut t, "value")?),
+                "uniform" => {
+                    let (min, max) = (need(&mut t, "min")?, need(&mut t, "max")?);
+                    if min > max {
+                        return Err(r.error(key, v, "min at most max"));
+                    }
+                    Dist::Uniform { min, max }
+                }
+                "normal" => {
+                    let mean = need(&mut t, "mean")?;
+                    let sd = need(&mut t, "sd")?;
+                    if sd <= 0.0 {
+                        return Err(r.error(key, v, "sd greater than 0"));
+                    }
+                    let min = t.f64("min", f64::NEG_INFINITY)?;
+                    let max = t.f64("max", f64::INFINITY)?;
+                    if min >= max {
+                        return Err(r.error(key, v, "min below max"));
+                    }
+                    // Truncation by rejection: the interval must hold a fair share of the
+                    // normal's mass, or drawing would take too long.
+                    let phi =
+                        |x: f64| 0.5 * libm::erfc(-(x - mean) / (sd * std::f64::consts::SQRT_2));
+                    if phi(max) - phi(min) < 0.01 {
+                        return Err(r.error(
+                            key,
+                            v,
+                            "a truncation interval [min, max] that holds at least 1 % of the normal's probability",
+                        ));
+                    }
+                    Dist::Normal { mean, sd, min, max }
+                }
+                "grid" => {
+                    let (min, max) = (need(&mut t, "min")?, need(&mut t, "max")?);
+                    if !t.has("count") {
+                        return Err(r.error(key, v, "`count` in a \"grid\" distribution"));
+                    }
+                    let count = t.integer("count", 1, 1, i64::MAX)? as u64;
+                    if min > max {
+                        return Err(r.error(key, v, "min at most max"));
+                    }
+                    Dist::Grid { min, max, count }
+                }
+                _ => return Err(r.error(key, v, allowed_forms)),
+            };
+            t.finish()?;
+            dist
+        }
+        _ => return Err(r.error(key, v, allowed_forms)),
+    };
+    let (lo, hi) = dist.support();
+    if !(range.holds(lo) && range.holds(hi)) {
+        let why = if lo.is_infinite() || hi.is_infinite() {
+            format!(
+                "{}; an untruncated normal reaches any value, so give min and max",
+                range.text
+            )
+        } else {
+            range.text.to_string()
+        };
+        return Err(r.error(key, v, &why));
+    }
+    Ok(dist)
+}
