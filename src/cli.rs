@@ -506,12 +506,14 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
             r.rows
         )
     });
+    let control = crate::output::sweep::control_columns(scenario);
     let info = SweepInfo {
         scenario_toml: &plan.text,
         seed: scenario.seed,
         samples,
         lane_type: plan.kernel.arithmetic(),
         shard: plan.shard,
+        control: &control,
     };
     let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?;
     eprintln!(

@@ -5,6 +5,7 @@
 
 pub mod cli;
 pub mod compare;
+pub mod control;
 pub mod output;
 pub mod plot;
 pub mod reference;

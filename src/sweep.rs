@@ -7,13 +7,15 @@
 //! of rows whatever the sample count; blocks keep their lanes from one window to the next,
 //! so the last (longest) samples of a window do not leave the block half empty.
 
+use crate::control::{LaneControl, Truth};
 use crate::reference::model::Surface;
 use crate::reference::outcome::{LegSummary, Outcome, Summary};
+use crate::reference::step::Thrust;
 use crate::reference::{Model, initial_state};
 use crate::sampling::{self, Sample};
 use crate::scenario::Scenario;
 use glam::{DQuat, DVec3};
-use kernels::block::{Block, LaneInit};
+use kernels::block::{Block, LaneInit, LaneThrust};
 use kernels::isa::{Isa, Kernel, KernelKind, WithKernel};
 use kernels::lane::{Lane, MAX_LANES};
 use kernels::params::{HoneycombParams, LegParams, Params, lane};
@@ -153,6 +155,7 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
             (m.inertia_kg_m2.min_element() * m.thresholds.diverged_rate_rad_s).powi(2),
         ),
         terrain_top_m: lane(m.terrain_top_m()),
+        thrust: m.control.is_some(),
     }
 }
 
@@ -208,6 +211,32 @@ fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
                 absorbed_j: finite_or_zero(at(&l.absorbed_j)),
             })
             .collect(),
+        control: None,
+    }
+}
+
+/// The truth lane `i`'s control loop reads (`contact`: a footpad of the lane touched in
+/// the last step).
+fn lane_truth<L: Lane>(block: &Block<L>, i: usize, contact: bool) -> Truth {
+    Truth {
+        t_s: block.t_s.lane(i),
+        position_m: DVec3::from_array(block.position_m.lane(i)),
+        velocity_m_s: DVec3::from_array(block.velocity_m_s.lane(i)),
+        attitude: DQuat::from_array(block.attitude.lane(i)),
+        rate_rad_s: DVec3::from_array(block.rate_rad_s.lane(i)),
+        contact,
+        normal: DVec3::from_array(block.surface.normal.lane(i)),
+    }
+}
+
+/// The thrust the control loop returned, as a lane takes it.
+fn lane_thrust(t: &Thrust) -> LaneThrust {
+    LaneThrust {
+        force_b_n: t.force_b_n.to_array(),
+        moment_b_n_m: t.moment_b_n_m.to_array(),
+        event_in_s: t.event_in_s,
+        approach_m_s: t.approach_m_s,
+        powered: t.powered,
     }
 }
 
@@ -227,6 +256,8 @@ struct Worker<L: Lane> {
     block: Block<L>,
     /// The sample of each lane (the first `L::LANES` used).
     samples: [Option<Sample>; MAX_LANES],
+    /// The control loop of each lane's sample (scenarios with one).
+    control: [Option<LaneControl>; MAX_LANES],
 }
 
 /// The most steps a worker asks of the kernel at once: the kernel returns sooner when a
@@ -267,6 +298,7 @@ impl<K: Kernel> Worker<K> {
         Worker {
             block: Block::new(params),
             samples: [None; MAX_LANES],
+            control: std::array::from_fn(|_| None),
         }
     }
 
@@ -276,6 +308,12 @@ impl<K: Kernel> Worker<K> {
             let s = sampling::sample(scenario, index);
             self.block.load(i, &lane_init(model, &s));
             self.samples[i] = Some(s);
+            if let Some(m) = &model.control {
+                let mut c = LaneControl::new(m, s.seed);
+                let truth = lane_truth(&self.block, i, false);
+                self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
+                self.control[i] = Some(c);
+            }
         } else {
             self.block.retire(i);
             self.samples[i] = None;
@@ -323,12 +361,30 @@ impl<K: Kernel> Worker<K> {
                         if sample.index < feed.window_end {
                             feed.outstanding.fetch_sub(1, Ordering::Relaxed);
                         }
-                        rows.push(Row {
-                            sample,
-                            summary: lane_summary(&self.block, i),
-                        });
+                        let mut summary = lane_summary(&self.block, i);
+                        if let (Some(m), Some(c)) = (&model.control, &mut self.control[i]) {
+                            let left = self.block.thrust.event_in_s.lane(i);
+                            summary.control = Some(c.finish(m, left));
+                        }
+                        rows.push(Row { sample, summary });
                         self.refill(scenario, model, feed, i);
                     }
+                }
+            }
+            if advanced.events != 0
+                && let Some(m) = &model.control
+            {
+                for i in (0..K::LANES).filter(|i| advanced.events & (1 << i) != 0) {
+                    let contact = self
+                        .block
+                        .leg_step
+                        .iter()
+                        .any(|l| l.penetration_m.lane(i) > 0.0);
+                    let truth = lane_truth(&self.block, i, contact);
+                    let c = self.control[i]
+                        .as_mut()
+                        .expect("a lane with events has a loop");
+                    self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
                 }
             }
         }

@@ -79,6 +79,17 @@ fn compare_kernels(
             }
         }
         let name = format!("{name}, kernel {} {}", isa.key(), precision.key());
+        // A control loop in the fall (MODEL.md section 7) quantises its commands to
+        // minimum impulse bits: where f32 rounding flips one, the lander's velocity moves
+        // by an impulse bit's share (0.01 N s on 100 kg: 1e-4 m/s), its arrival after a
+        // 30 s fall by millimetres, its first contact by milliseconds, and flips add up
+        // over the hundreds of instants of a fall. There the first contact is no ballistic
+        // arc's end: it drifts (counted) beyond 10 ms instead of failing beyond a step.
+        let contact_within = if model.control.is_some() && precision == Precision::F32 {
+            None
+        } else {
+            Some(1e-3 + 1e-9)
+        };
         let (mut disagree, mut unexplained, mut drifted) = (0, 0, 0);
         let mut worst = [0.0f64; 4];
         for (i, (row, r)) in rows.iter().zip(reference).enumerate() {
@@ -111,7 +122,7 @@ fn compare_kernels(
                 );
                 continue;
             }
-            drifted += u64::from(check_close(&name, i, r, k, &mut worst));
+            drifted += u64::from(check_close(&name, i, r, k, contact_within, &mut worst));
         }
         println!(
             "{name}: {n} samples, {disagree} outcome disagreements ({unexplained} unexplained), {drifted} drifted; worst agreeing |diff|: decided {:.2e} s, max tilt {:.2e} deg, peak accel {:.2e} (relative), stroke {:.2e} m",
@@ -170,11 +181,19 @@ fn near_threshold(
 
 /// Tolerances for samples with the same outcome. The first contact ends a ballistic arc,
 /// which both integrate exactly: it agrees to within one step (a step boundary may fall on
-/// either side of it by rounding). Later results pass through the chaos of the bounces:
+/// either side of it by rounding): `contact_within` s, or, where a control loop acts in
+/// the fall (`None`), a sample drifts when it differs by more than 10 ms. Later results pass through the chaos of the bounces:
 /// a sample "drifts" when its decided time differs by more than 50 ms + 2 %, its maximum
 /// tilt by more than 0.5 deg or its peak acceleration by more than 1 %. Drifted samples
 /// are counted, not failed one by one; the caller bounds their share.
-fn check_close(name: &str, i: usize, r: &Summary, k: &Summary, worst: &mut [f64; 4]) -> bool {
+fn check_close(
+    name: &str,
+    i: usize,
+    r: &Summary,
+    k: &Summary,
+    contact_within: Option<f64>,
+    worst: &mut [f64; 4],
+) -> bool {
     let d = [
         (r.decided_s - k.decided_s).abs(),
         (r.max_tilt_deg - k.max_tilt_deg).abs(),
@@ -189,18 +208,28 @@ fn check_close(name: &str, i: usize, r: &Summary, k: &Summary, worst: &mut [f64;
     for (w, x) in worst.iter_mut().zip(d) {
         *w = w.max(x);
     }
-    match (r.first_contact_s, k.first_contact_s) {
-        (Some(a), Some(b)) => assert!(
-            (a - b).abs() <= 1e-3 + 1e-9,
+    let mut contact_drift = false;
+    match (r.first_contact_s, k.first_contact_s, contact_within) {
+        (Some(a), Some(b), Some(within)) => assert!(
+            (a - b).abs() <= within,
             "{name} sample {i}: first contact {a} vs {b}"
         ),
-        (a, b) => assert_eq!(a, b, "{name} sample {i}: first contact"),
+        (Some(a), Some(b), None) => contact_drift = (a - b).abs() > 0.01,
+        (a, b, _) => assert_eq!(a, b, "{name} sample {i}: first contact"),
     }
-    d[0] > 0.05 + 0.02 * r.decided_s || d[1] > 0.5 || d[2] > 0.01
+    contact_drift || d[0] > 0.05 + 0.02 * r.decided_s || d[1] > 0.5 || d[2] > 0.01
 }
 
 fn scenario(toml: &str) -> Scenario {
     Scenario::from_toml(toml).unwrap()
+}
+
+/// The shipped scenario `scenarios/NAME.toml`.
+fn scenario_file(name: &str) -> Scenario {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios")
+        .join(format!("{name}.toml"));
+    scenario(&std::fs::read_to_string(path).unwrap())
 }
 
 #[test]
@@ -235,14 +264,15 @@ fn kernels_agree_with_the_reference() {
             // Stiff contact, slopes past the friction angle: the early `sliding` and
             // `bouncing` rules fire (in about 8 % of the samples).
             "MuJoCo-matched",
-            scenario(
-                &std::fs::read_to_string(
-                    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-                        .join("scenarios/mujoco-matched.toml"),
-                )
-                .unwrap(),
-            ),
+            scenario_file("mujoco-matched"),
             1000,
+        ),
+        (
+            // Thrusters and a control loop: attitude hold through a stepped fall, sampled
+            // hold-down thrust at contact, sensor noise and bias, thruster errors.
+            "hold-down and attitude hold",
+            scenario_file("hold-down"),
+            400,
         ),
     ];
     let mut totals: Vec<(KernelKind, [u64; 4])> = Vec::new();

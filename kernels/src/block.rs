@@ -83,6 +83,28 @@ pub struct Track<L: Lane> {
     pub outcome: L,
 }
 
+/// The thrust on each lane (MODEL.md section 7), constant from one event of the lane's
+/// control loop to the next: the control loop (outside the kernels) sets it at every event,
+/// and the step never passes the next one. A lander without a control loop keeps no
+/// thrust, no event and `powered` false.
+#[derive(Debug, Clone, Copy)]
+#[allow(missing_docs)]
+pub struct ThrustLanes<L: Lane> {
+    /// Sum of the firing thrusters' forces, in B, N.
+    pub force_b_n: Vec3<L>,
+    /// Their moment about the CG, in B, N m.
+    pub moment_b_n_m: Vec3<L>,
+    /// Time to the lane's next control event (a thruster stops, or a control instant), s;
+    /// infinite where none comes.
+    pub event_in_s: L,
+    /// What the thrust can add, within a longest flight step, to the speed at which a
+    /// footpad approaches the surface (`step_size`), m/s.
+    pub approach_m_s: L,
+    /// Mask: the control loop may still fire; the rest clock and the early rules wait
+    /// (MODEL.md section 8).
+    pub powered: L::Mask,
+}
+
 /// `LANES` landers.
 #[derive(Debug, Clone)]
 #[allow(missing_docs)]
@@ -113,6 +135,8 @@ pub struct Block<L: Lane> {
     pub start_rate_rad_s: Vec3<L>,
     pub start_t_s: L,
     pub dt_s: L,
+    /// The thrust of each lane (all zero without thrusters).
+    pub thrust: ThrustLanes<L>,
 }
 
 /// The initial state of one lane (computed outside the kernels, where trigonometry is fine).
@@ -129,6 +153,28 @@ pub struct LaneInit {
     pub tangent_v: [f64; 3],
     pub offset_m: [f64; 2],
     pub tile: usize,
+}
+
+/// The thrust of one lane until its next control event (`ThrustLanes`, one lane).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[allow(missing_docs)]
+pub struct LaneThrust {
+    pub force_b_n: [f64; 3],
+    pub moment_b_n_m: [f64; 3],
+    pub event_in_s: f64,
+    pub approach_m_s: f64,
+    pub powered: bool,
+}
+
+impl LaneThrust {
+    /// No thrust, no event to come: a passive lander.
+    pub const NONE: LaneThrust = LaneThrust {
+        force_b_n: [0.0; 3],
+        moment_b_n_m: [0.0; 3],
+        event_in_s: f64::INFINITY,
+        approach_m_s: 0.0,
+        powered: false,
+    };
 }
 
 impl<L: Lane> Block<L> {
@@ -208,6 +254,13 @@ impl<L: Lane> Block<L> {
             start_rate_rad_s: Vec3::ZERO,
             start_t_s: zero,
             dt_s: zero,
+            thrust: ThrustLanes {
+                force_b_n: Vec3::ZERO,
+                moment_b_n_m: Vec3::ZERO,
+                event_in_s: lane(f64::INFINITY),
+                approach_m_s: zero,
+                powered: all_false::<L>(),
+            },
         }
     }
 
@@ -248,7 +301,18 @@ impl<L: Lane> Block<L> {
         set(&mut t.max_penetration, 0.0);
         set(&mut t.steps, 0.0);
         set(&mut t.outcome, -1.0);
+        self.set_thrust(i, &LaneThrust::NONE);
         self.active.set_lane(i, true);
+    }
+
+    /// Sets lane `i`'s thrust until its next control event (outside the kernels).
+    pub fn set_thrust(&mut self, i: usize, thrust: &LaneThrust) {
+        let t = &mut self.thrust;
+        t.force_b_n.set_lane(i, thrust.force_b_n);
+        t.moment_b_n_m.set_lane(i, thrust.moment_b_n_m);
+        t.event_in_s.set_lane(i, thrust.event_in_s);
+        t.approach_m_s.set_lane(i, thrust.approach_m_s);
+        t.powered.set_lane(i, thrust.powered);
     }
 
     /// Number of lanes holding a sample (read through memory, outside the kernels).

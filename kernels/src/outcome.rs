@@ -88,7 +88,10 @@ fn all_finite<L: Lane, const N: usize>(xs: [L; N]) -> L::Mask {
 /// Takes in the step just made; returns the mask of lanes decided by it (their code is in
 /// `block.track.outcome`).
 #[inline(always)]
-pub fn observe<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut Block<L>) -> L::Mask {
+pub fn observe<L: Lane, const DAMPERS: bool, const THRUST: bool>(
+    p: &Params<L>,
+    block: &mut Block<L>,
+) -> L::Mask {
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let active = block.active & block.track.outcome.simd_lt(zero);
@@ -210,14 +213,21 @@ pub fn observe<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut Block<L>
             tipping |= beyond & pivot & away & quasi_static;
         }
     }
+    // A lander whose control loop may still fire is not left to itself: no rest, and no
+    // early rule, counts for it (MODEL.md section 8).
+    let passive = if THRUST {
+        !block.thrust.powered
+    } else {
+        all_true::<L>()
+    };
     let tipped = cos_tilt.simd_lt(zero)
         | (if p.early_tipping {
-            tipping
+            tipping & passive
         } else {
             all_false::<L>()
         });
 
-    let at_rest = slow & stuck & inside;
+    let at_rest = slow & stuck & inside & passive;
     // A rest that begins with this step remembers where the footpads stick.
     let starting = at_rest & !in_rest;
     if (starting & active).to_bitmask() != 0 {
@@ -231,16 +241,16 @@ pub fn observe<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut Block<L>
 
     // The early rules, in lanes that no rule above decided. (Only blocks with a lane where
     // every footpad slips, or with one in flight, compute them.)
-    let open = active & !(diverged | tipped | stable | ended);
+    let open = active & !(diverged | tipped | stable | ended) & passive;
     let mut slide = all_false::<L>();
     if p.early_sliding && (all_slipping & open).to_bitmask() != 0 {
-        slide = all_slipping & steady_slide::<L, DAMPERS>(p, block);
+        slide = all_slipping & steady_slide::<L, DAMPERS>(p, block) & passive;
     }
     let mut flight_over = all_false::<L>();
     if p.early_bouncing {
         let flying = !touching;
         if (flying & open).to_bitmask() != 0 {
-            flight_over = flying & cannot_return(p, block);
+            flight_over = flying & cannot_return(p, block) & passive;
         }
     }
 

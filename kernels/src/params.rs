@@ -97,6 +97,9 @@ pub struct Params<L> {
     pub diverged_momentum_squared: L,
     /// Height of the terrain's highest point above the plane (0 for the plane), m.
     pub terrain_top_m: L,
+    /// Whether the landers have a control loop (thrusters): the step then applies
+    /// `Block::thrust` and stops at its events.
+    pub thrust: bool,
 }
 
 /// Broadcasts a scalar, outside the kernels: through memory, with no SIMD instruction

@@ -5,10 +5,12 @@ use crate::vec3::{Quat, Vec3};
 
 /// Advances position, velocity, rates and attitude of every lane by its own `dt` (0 leaves
 /// a lane as it is). Divisions by the mass and the moments of inertia are multiplications
-/// by their reciprocals, computed once per sweep.
+/// by their reciprocals, computed once per sweep. The contact force `force_n` kicks the
+/// velocity first (symplectic Euler); gravity and, with `THRUST`, the thrust `thrust_n`
+/// (in I, constant over the step) enter exactly, as constant accelerations.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn integrate<L: Lane>(
+pub fn integrate<L: Lane, const THRUST: bool>(
     position_m: &mut Vec3<L>,
     velocity_m_s: &mut Vec3<L>,
     attitude: &mut Quat<L>,
@@ -18,16 +20,23 @@ pub fn integrate<L: Lane>(
     gyroscopic: Vec3<L>,
     gravity_m_s2: L,
     force_n: Vec3<L>,
+    thrust_n: Vec3<L>,
     moment_n_m: Vec3<L>,
     dt: L,
 ) {
     let acceleration = force_n * inverse_mass_per_kg;
     let kicked = acceleration.mul_add(dt, *velocity_m_s);
-    let fall = gravity_m_s2 * (L::splat(0.5) * dt * dt);
+    let half_dt_squared = L::splat(0.5) * dt * dt;
+    let fall = gravity_m_s2 * half_dt_squared;
     *position_m = kicked.mul_add(dt, *position_m);
     position_m.z -= fall;
     *velocity_m_s = kicked;
     velocity_m_s.z = gravity_m_s2.mul_neg_add(dt, velocity_m_s.z);
+    if THRUST {
+        let pushed = thrust_n * inverse_mass_per_kg;
+        *position_m = pushed.mul_add(half_dt_squared, *position_m);
+        *velocity_m_s = pushed.mul_add(dt, *velocity_m_s);
+    }
 
     // Euler's equations by the implicit midpoint rule, as the reference: the rates kicked
     // by the moment, then each pass one multiply and one multiply-add per axis.

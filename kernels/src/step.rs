@@ -52,9 +52,10 @@ pub(crate) fn tip_in_body<L: Lane, const DAMPERS: bool>(
 }
 
 /// Advances every lane of `block` by its `dt` (0 for lanes that must not move), from the
-/// footpad heights of `footpad_heights`.
+/// footpad heights of `footpad_heights`; with `THRUST`, under the thrust of `block.thrust`,
+/// counting down to its next event.
 #[inline(always)]
-pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool>(
+pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: bool>(
     p: &Params<L>,
     block: &mut Block<L>,
     dt: L,
@@ -117,7 +118,13 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool>(
         out.normal_n = normal_n;
         out.slipping = slipping;
     }
-    let moment_n_m = rotation.transpose_mul_vec3(moment_i);
+    let mut moment_n_m = rotation.transpose_mul_vec3(moment_i);
+    let mut thrust_n = Vec3::ZERO;
+    if THRUST {
+        thrust_n = rotation.mul_vec3(block.thrust.force_b_n);
+        moment_n_m += block.thrust.moment_b_n_m;
+        block.thrust.event_in_s -= dt;
+    }
     block.start_t_s = block.t_s;
     block.dt_s = dt;
     block.start_position_m = block.position_m;
@@ -125,7 +132,7 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool>(
     block.start_rotation = rotation;
     block.start_rate_rad_s = block.rate_rad_s;
     block.force_n = force_n;
-    rigid_body::integrate(
+    rigid_body::integrate::<L, THRUST>(
         &mut block.position_m,
         &mut block.velocity_m_s,
         &mut block.attitude,
@@ -135,6 +142,7 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool>(
         p.gyroscopic,
         p.gravity_m_s2,
         force_n,
+        thrust_n,
         moment_n_m,
         dt,
     );
@@ -175,10 +183,10 @@ pub fn footpad_heights<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut 
 /// The step every lane takes (see the reference's `step_size`), given the least height of
 /// its footpads above the base plane (`footpad_heights`): `step_s` near the surface,
 /// longer in free flight where no footpad can reach the terrain within it; 0 for empty
-/// lanes.
+/// lanes. With `THRUST`, never past the lane's next control event.
 #[inline(always)]
 #[must_use]
-pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>, lowest: L) -> L {
+pub fn step_size<L: Lane, const THRUST: bool>(p: &Params<L>, block: &Block<L>, lowest: L) -> L {
     let remaining = p.t_max_s - block.t_s;
     let mut dt = p.step_s;
     if p.long_flight_steps {
@@ -188,10 +196,13 @@ pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>, lowest: L) -> L {
         if (flying & block.active).to_bitmask() != 0 {
             // As the reference: half the clearance over the fastest approach within a
             // longest flight step.
-            let speed = block.rate_rad_s.length().mul_add(
+            let mut speed = block.rate_rad_s.length().mul_add(
                 p.leg_reach_m,
                 block.velocity_m_s.length() + p.gravity_m_s2 * p.flight_step_max_s,
             );
+            if THRUST {
+                speed += block.thrust.approach_m_s;
+            }
             // (The bounds are never NaN: `fast_` versions give the same.)
             let free = (L::splat(0.5) * clearance / speed)
                 .fast_max(p.step_s)
@@ -199,58 +210,87 @@ pub fn step_size<L: Lane>(p: &Params<L>, block: &Block<L>, lowest: L) -> L {
             dt = flying.select(free, dt);
         }
     }
-    block.active.select(dt.min(remaining), L::splat(0.0))
+    let dt = block.active.select(dt.min(remaining), L::splat(0.0));
+    if THRUST {
+        dt.min(block.thrust.event_in_s)
+    } else {
+        dt
+    }
 }
 
-/// What `advance` did: how many steps it took, and `outcome_bits` of the last one.
+/// What `advance` did: how many steps it took, `outcome_bits` of the last one, and the
+/// lanes it brought to a control event.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Advanced {
     /// Steps taken (at least 1, at most the number asked for).
     pub steps: u32,
     /// `outcome_bits` of the last step: 0 when it decided no lane and needs no recentring.
     pub bits: u32,
+    /// Lanes (lane `i` in bit `i`) whose next control event came with the last step: the
+    /// control loop must set their thrust (`Block::set_thrust`) before the next step.
+    pub events: u32,
 }
 
 /// Up to `steps` steps of every lane holding a sample (each its step size, the step, the
-/// outcome tracking), stopping after the first step that decides a lane or asks for a
-/// lane to be recentred: the caller then takes over, with `bits` saying which lanes.
+/// outcome tracking), stopping after the first step that decides a lane, asks for a
+/// lane to be recentred or brings one to a control event: the caller then takes over, with
+/// `bits` and `events` saying which lanes.
 /// Each lane type compiles this inside a function that enables its instruction set
 /// (`isa`); a call runs many steps, so the three parts are inlined into one loop and
 /// nothing but the block's state crosses from one step to the next (one call per step,
 /// with the parts as functions of their own, measured 15-19 % slower).
 ///
-/// The loop is compiled once for each combination of dampers and rough terrain, and the
-/// parameters pick one: the step then tests for neither (a test per leg and step, and code
-/// that the compiler would otherwise hoist out of the tests: a division per step for
-/// dampers that are not there).
+/// The loop is compiled once for each combination of dampers, rough terrain and thrust,
+/// and the parameters pick one: the step then tests for none of them (a test per leg and
+/// step, and code that the compiler would otherwise hoist out of the tests: a division per
+/// step for dampers that are not there), and a lander without thrusters pays nothing for
+/// them.
 #[inline(always)]
 pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>, steps: u32) -> Advanced {
-    match (p.honeycomb.is_some(), p.terrain.is_some()) {
-        (false, false) => advance_with::<L, false, false>(p, block, steps),
-        (true, false) => advance_with::<L, true, false>(p, block, steps),
-        (false, true) => advance_with::<L, false, true>(p, block, steps),
-        (true, true) => advance_with::<L, true, true>(p, block, steps),
+    match (p.honeycomb.is_some(), p.terrain.is_some(), p.thrust) {
+        (false, false, false) => advance_with::<L, false, false, false>(p, block, steps),
+        (true, false, false) => advance_with::<L, true, false, false>(p, block, steps),
+        (false, true, false) => advance_with::<L, false, true, false>(p, block, steps),
+        (true, true, false) => advance_with::<L, true, true, false>(p, block, steps),
+        (false, false, true) => advance_with::<L, false, false, true>(p, block, steps),
+        (true, false, true) => advance_with::<L, true, false, true>(p, block, steps),
+        (false, true, true) => advance_with::<L, false, true, true>(p, block, steps),
+        (true, true, true) => advance_with::<L, true, true, true>(p, block, steps),
     }
 }
 
-/// `advance` with (`DAMPERS`) or without dampers, on rough terrain (`TERRAIN`) or a plane.
+/// `advance` with (`DAMPERS`) or without dampers, on rough terrain (`TERRAIN`) or a plane,
+/// with (`THRUST`) or without a control loop.
 #[inline(always)]
-fn advance_with<L: Lane, const DAMPERS: bool, const TERRAIN: bool>(
+fn advance_with<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: bool>(
     p: &Params<L>,
     block: &mut Block<L>,
     steps: u32,
 ) -> Advanced {
     for taken in 1..=steps {
         let lowest = footpad_heights::<L, DAMPERS>(p, block);
-        let dt = step_size(p, block, lowest);
-        step::<L, DAMPERS, TERRAIN>(p, block, dt);
-        let decided = crate::outcome::observe::<L, DAMPERS>(p, block);
+        let dt = step_size::<L, THRUST>(p, block, lowest);
+        step::<L, DAMPERS, TERRAIN, THRUST>(p, block, dt);
+        let decided = crate::outcome::observe::<L, DAMPERS, THRUST>(p, block);
         let bits = outcome_bits(block, decided);
-        if bits != 0 {
-            return Advanced { steps: taken, bits };
+        let events = if THRUST {
+            (block.thrust.event_in_s.simd_le(L::splat(0.0)) & block.active & !decided).to_bitmask()
+        } else {
+            0
+        };
+        if bits != 0 || events != 0 {
+            return Advanced {
+                steps: taken,
+                bits,
+                events,
+            };
         }
     }
-    Advanced { steps, bits: 0 }
+    Advanced {
+        steps,
+        bits: 0,
+        events: 0,
+    }
 }
 
 /// What `advance` returns: the lanes decided (mask `decided`) in bits 0-15 (lane `i` in

@@ -59,6 +59,11 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         }
     }
 
+    let control: Vec<&'static str> = super::sweep::CONTROL_COLUMNS
+        .iter()
+        .map(|c| c.0)
+        .filter(|name| files[0].schema.field_with_name(name).is_ok())
+        .collect();
     let meta = files[0].schema.metadata();
     let text = |key: &str| meta.get(key).map_or("", String::as_str);
     let info = SweepInfo {
@@ -67,6 +72,7 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         samples: number(&files[0], "touchdown.samples")?,
         lane_type: text("touchdown.lane_type"),
         shard: None,
+        control: &control,
     };
     let legs = files[0]
         .schema

@@ -46,6 +46,78 @@ pub struct SweepInfo<'a> {
     pub lane_type: &'a str,
     /// The slice of the sweep this file holds, if it is a shard.
     pub shard: Option<Shard>,
+    /// The control loop's columns (`CONTROL_COLUMNS`) the file has: none without one.
+    pub control: &'a [&'static str],
+}
+
+/// The columns of what a control loop did, and of its sampled law parameters: name, unit,
+/// description, and the law a parameter belongs to (empty: every control loop).
+pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 8] = [
+    (
+        "propellant_kg",
+        "kg",
+        "propellant used: thrust integral over Isp g0",
+        "",
+    ),
+    (
+        "thrust_on_time_s",
+        "s",
+        "sum of every thruster's time on",
+        "",
+    ),
+    (
+        "firings",
+        "1",
+        "thruster firings (a thruster on in a control period counts once)",
+        "",
+    ),
+    (
+        "hold_down_impulse_n_s",
+        "N s",
+        "thrust integral of the hold-down firings",
+        "",
+    ),
+    (
+        "hold_down_thrust_n",
+        "N",
+        "sampled law parameter: hold-down thrust",
+        "hold_down",
+    ),
+    (
+        "hold_down_duration_s",
+        "s",
+        "sampled law parameter: hold-down duration",
+        "hold_down",
+    ),
+    (
+        "attitude_kp_n_m_per_rad",
+        "N m/rad",
+        "sampled law parameter: attitude hold proportional gain",
+        "attitude_hold",
+    ),
+    (
+        "attitude_kd_n_m_s_per_rad",
+        "N m s/rad",
+        "sampled law parameter: attitude hold rate gain",
+        "attitude_hold",
+    ),
+];
+
+/// The names of the `CONTROL_COLUMNS` a sweep of `scenario` writes.
+#[must_use]
+pub fn control_columns(scenario: &crate::scenario::Scenario) -> Vec<&'static str> {
+    let Some(c) = &scenario.control else {
+        return Vec::new();
+    };
+    CONTROL_COLUMNS
+        .iter()
+        .filter(|(_, _, _, law)| match *law {
+            "hold_down" => c.hold_down.is_some(),
+            "attitude_hold" => c.attitude_hold.is_some(),
+            _ => true,
+        })
+        .map(|c| c.0)
+        .collect()
 }
 
 /// Schema metadata keys of a shard file (a whole sweep has neither).
@@ -173,6 +245,16 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
             "energy absorbed by the damper",
         ));
     }
+    for (name, unit, description, _) in CONTROL_COLUMNS {
+        if info.control.contains(&name) {
+            let t = if name == "firings" {
+                DataType::UInt32
+            } else {
+                DataType::Float64
+            };
+            fields.push(f(name, t, unit, description));
+        }
+    }
     let mut meta = BTreeMap::from([
         ("touchdown.engine".to_string(), ENGINE.to_string()),
         ("touchdown.kind".to_string(), "sweep".to_string()),
@@ -244,6 +326,20 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
         cols.push(f64s(&|r| r.summary.legs[k].peak_normal_force_n));
         cols.push(f64s(&|r| r.summary.legs[k].stroke_m));
         cols.push(f64s(&|r| r.summary.legs[k].absorbed_j));
+    }
+    let control = |r: &Row| r.summary.control.unwrap_or_default();
+    for field in schema.fields().iter().skip(cols.len()) {
+        cols.push(match field.name().as_str() {
+            "propellant_kg" => f64s(&|r| control(r).propellant_kg),
+            "thrust_on_time_s" => f64s(&|r| control(r).on_time_s),
+            "firings" => u32s(&|r| control(r).firings),
+            "hold_down_impulse_n_s" => f64s(&|r| control(r).hold_down_impulse_n_s),
+            "hold_down_thrust_n" => f64s(&|r| control(r).hold_down_thrust_n),
+            "hold_down_duration_s" => f64s(&|r| control(r).hold_down_duration_s),
+            "attitude_kp_n_m_per_rad" => f64s(&|r| control(r).kp_n_m_per_rad),
+            "attitude_kd_n_m_s_per_rad" => f64s(&|r| control(r).kd_n_m_s_per_rad),
+            other => anyhow::bail!("no column {other} in a sweep"),
+        });
     }
     Ok(RecordBatch::try_new(schema.clone(), cols)?)
 }

@@ -80,6 +80,10 @@ pub struct Model {
     pub thresholds: Thresholds,
     pub attitude_surface: bool,
     pub clearance_m: f64,
+    /// Whether a sample starts at the release (the fall stepped), not at touchdown.
+    pub start_at_release: bool,
+    /// The control loop and its thrusters, if any.
+    pub control: Option<crate::control::ControlModel>,
 }
 
 impl Model {
@@ -142,6 +146,7 @@ impl Model {
             }
         });
         let o = &s.outcome;
+        let leg_reach_m = legs.iter().map(|l| l.tip_m.length()).fold(0.0, f64::max);
         Model {
             gravity_m_s2: s.gravity_m_s2,
             mass_kg: s.lander.mass_kg,
@@ -175,6 +180,8 @@ impl Model {
             attitude_surface: s.initial.attitude_reference
                 == crate::scenario::AttitudeReference::Surface,
             clearance_m: s.initial.clearance_m,
+            start_at_release: s.initial.start == crate::scenario::Start::Release,
+            control: crate::control::ControlModel::of(s, leg_reach_m),
         }
     }
 

@@ -105,6 +105,8 @@ pub struct Summary {
     pub first_contact_s: Option<f64>,
     pub max_penetration_m: f64,
     pub legs: Vec<LegSummary>,
+    /// What the control loop did (scenarios with one).
+    pub control: Option<crate::control::ControlSummary>,
 }
 
 /// Collects the summary and decides the outcome, one step at a time.
@@ -230,11 +232,15 @@ impl Tracker {
                 }
             }
         }
-        if cos_tilt < 0.0 || (th.early_tipping && tipping) {
+        // A lander whose control loop may still fire is not left to itself: no rest, and no
+        // early rule, counts for it (MODEL.md section 8).
+        let passive = !report.thrust.powered;
+        if cos_tilt < 0.0 || (th.early_tipping && tipping && passive) {
             return Some(Outcome::Tipped);
         }
 
-        let at_rest = body.velocity_m_s.length_squared() < th.rest_speed_m_s.powi(2)
+        let at_rest = passive
+            && body.velocity_m_s.length_squared() < th.rest_speed_m_s.powi(2)
             && body.rate_rad_s.length_squared() < th.rest_rate_rad_s.powi(2)
             && resting >= model.legs.len().min(3)
             && stuck
@@ -266,10 +272,14 @@ impl Tracker {
             });
         }
         let all_slipping = report.legs.iter().all(|l| l.slipping);
-        if all_slipping && model.slides_decidable() && steady_slide(model, surface, report, after) {
+        if passive
+            && all_slipping
+            && model.slides_decidable()
+            && steady_slide(model, surface, report, after)
+        {
             return Some(Outcome::Sliding);
         }
-        if th.early_bouncing && contacts == 0 && cannot_return(model, surface, after) {
+        if passive && th.early_bouncing && contacts == 0 && cannot_return(model, surface, after) {
             return Some(Outcome::Bouncing);
         }
         None
@@ -307,6 +317,7 @@ impl Tracker {
                     absorbed_j: finite_or_zero(l.absorbed_j),
                 })
                 .collect(),
+            control: None,
         }
     }
 }

@@ -23,15 +23,19 @@ pub struct Body {
     pub rate_rad_s: DVec3,
 }
 
-/// Advances the body by `dt` under contact force `force_n` (I), moment `moment_n_m` (B)
-/// and gravity `g0` along -Z_I.
+/// Advances the body by `dt` under contact force `force_n` (I), thrust `thrust_n` (I),
+/// moment `moment_n_m` (B) and gravity `g0` along -Z_I. The contact force kicks the
+/// velocity first (symplectic Euler); gravity and the thrust, constant over a step, enter
+/// exactly, as constant accelerations.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub fn integrate(
     body: &mut Body,
     mass_kg: f64,
     inertia_kg_m2: DVec3,
     gravity_m_s2: f64,
     force_n: DVec3,
+    thrust_n: DVec3,
     moment_n_m: DVec3,
     dt: f64,
 ) {
@@ -40,6 +44,11 @@ pub fn integrate(
     let kicked = body.velocity_m_s + acceleration * dt;
     body.position_m += kicked * dt + gravity * (0.5 * dt * dt);
     body.velocity_m_s = kicked + gravity * dt;
+    if thrust_n != DVec3::ZERO {
+        let pushed = thrust_n / mass_kg;
+        body.position_m += pushed * (0.5 * dt * dt);
+        body.velocity_m_s += pushed * dt;
+    }
 
     // Euler's equations, I dw/dt = M - w x (I w), by the implicit midpoint rule: it keeps
     // the rotational energy and |L| of a torque-free body exactly (to the convergence of
@@ -200,7 +209,16 @@ mod tests {
                     let z0 = body.attitude * DVec3::Z;
                     let steps = (120.0 / dt) as usize;
                     for k in 1..=steps {
-                        integrate(&mut body, 100.0, inertia, 0.0, DVec3::ZERO, DVec3::ZERO, dt);
+                        integrate(
+                            &mut body,
+                            100.0,
+                            inertia,
+                            0.0,
+                            DVec3::ZERO,
+                            DVec3::ZERO,
+                            DVec3::ZERO,
+                            dt,
+                        );
                         let l = momentum(&body).length();
                         worst_momentum = worst_momentum.max((l / l0 - 1.0).abs());
                         // The angle Z_B has turned through, against the bound on it (while

@@ -6,6 +6,7 @@ use super::model::{Model, Surface};
 use super::outcome::{Summary, Tracker};
 use super::rigid_body::Body;
 use super::step::{State, StepReport, step, step_size};
+use crate::control::{LaneControl, truth_of};
 use crate::sampling::Sample;
 use glam::{DQuat, DVec3};
 
@@ -13,6 +14,8 @@ use glam::{DQuat, DVec3};
 /// attitude reference (local vertical, or the surface normal), the fall speed
 /// `sqrt(2 g0 h)` plus the velocity errors, and the CG placed on the slope normal through
 /// the origin so that the lowest footpad is `clearance_m` above the terrain beneath it.
+/// Or, for a start at the release, the same `h` higher along `Z_I` with only the velocity
+/// errors: the stepped fall brings it there.
 #[must_use]
 pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State {
     let x = &sample.inputs;
@@ -27,7 +30,12 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
             x.pitch_deg.to_radians(),
             x.roll_deg.to_radians(),
         );
-    let fall = (2.0 * model.gravity_m_s2 * x.release_height_m).sqrt();
+    // From the release the fall is stepped; at touchdown it is over, and its speed known.
+    let (fall, above) = if model.start_at_release {
+        (0.0, x.release_height_m)
+    } else {
+        ((2.0 * model.gravity_m_s2 * x.release_height_m).sqrt(), 0.0)
+    };
     let velocity = reference
         * DVec3::new(
             x.velocity_error_x_m_s,
@@ -50,12 +58,13 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
         t_s: 0.0,
         t_error_s: 0.0,
         body: Body {
-            position_m: surface.normal * (lift + model.clearance_m),
+            position_m: surface.normal * (lift + model.clearance_m) + DVec3::Z * above,
             velocity_m_s: velocity,
             attitude,
             rate_rad_s: rate,
         },
         legs: vec![LegState::default(); model.legs.len()],
+        thrust: super::step::Thrust::NONE,
     }
 }
 
@@ -88,12 +97,25 @@ pub fn run_to_end(
     let mut state = initial_state(model, &surface, sample);
     let mut tracker = Tracker::new(model, &state);
     let mut report = StepReport::new(model.legs.len());
+    let mut control = model
+        .control
+        .as_ref()
+        .map(|m| (m, LaneControl::new(m, sample.seed)));
+    if let Some((m, c)) = &mut control {
+        state.thrust = c.event(m, &truth_of(&state, &surface, false));
+    }
     loop {
         let dt = step_size(model, &surface, &state);
         step(model, &surface, &mut state, dt, &mut report);
+        if let Some((m, c)) = &control {
+            c.report(m, report.control.get_or_insert_with(Default::default));
+        }
         observe(&report);
         if let Some(outcome) = tracker.observe(model, &surface, &report, &state) {
-            let summary = tracker.finish(&surface, outcome, &state);
+            let mut summary = tracker.finish(&surface, outcome, &state);
+            if let Some((m, c)) = &mut control {
+                summary.control = Some(c.finish(m, state.thrust.event_in_s));
+            }
             // One more step of a copy, for what it computed at its start (no step taken
             // from there: length 0, and the strokes of the state itself).
             let mut end = state.clone();
@@ -103,6 +125,12 @@ pub fn run_to_end(
                 leg.stroke_m = at.stroke_m;
             }
             return (summary, report);
+        }
+        if let Some((m, c)) = &mut control
+            && state.thrust.event_in_s <= 0.0
+        {
+            let contact = report.legs.iter().any(super::step::LegReport::in_contact);
+            state.thrust = c.event(m, &truth_of(&state, &surface, contact));
         }
     }
 }

@@ -15,6 +15,39 @@ pub struct State {
     pub t_error_s: f64,
     pub body: Body,
     pub legs: Vec<LegState>,
+    /// The thrust until the next control event (none without a control loop).
+    pub thrust: Thrust,
+}
+
+/// The thrust on the lander from one event of its control loop to the next (MODEL.md
+/// section 7; the kernels' `ThrustLanes`, one lane).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Thrust {
+    /// Sum of the firing thrusters' forces, in B, N.
+    pub force_b_n: DVec3,
+    /// Their moment about the CG, in B, N m.
+    pub moment_b_n_m: DVec3,
+    /// Time to the next control event, s (infinite where none comes).
+    pub event_in_s: f64,
+    /// What the thrust can add, within a longest flight step, to the speed at which a
+    /// footpad approaches the surface (`step_size`), m/s.
+    pub approach_m_s: f64,
+    /// The control loop may still fire: no rest and no early rule counts.
+    pub powered: bool,
+    /// Sum of the firing thrusters' thrust magnitudes (what burns propellant), N.
+    pub flow_n: f64,
+}
+
+impl Thrust {
+    /// No thrust and no event to come: a passive lander.
+    pub const NONE: Thrust = Thrust {
+        force_b_n: DVec3::ZERO,
+        moment_b_n_m: DVec3::ZERO,
+        event_in_s: f64::INFINITY,
+        approach_m_s: 0.0,
+        powered: false,
+        flow_n: 0.0,
+    };
 }
 
 /// One leg during one step, as computed at the start of the step.
@@ -55,7 +88,11 @@ pub struct StepReport {
     pub force_n: DVec3,
     /// Their moment about the CG, in B, N m.
     pub moment_n_m: DVec3,
+    /// The thrust during the step.
+    pub thrust: Thrust,
     pub legs: Vec<LegReport>,
+    /// What the control loop is doing (scenarios with one; filled by `run`).
+    pub control: Option<crate::control::ControlReport>,
 }
 
 impl StepReport {
@@ -73,7 +110,9 @@ impl StepReport {
             },
             force_n: DVec3::ZERO,
             moment_n_m: DVec3::ZERO,
+            thrust: Thrust::NONE,
             legs: vec![LegReport::default(); legs],
+            control: None,
         }
     }
 }
@@ -127,21 +166,25 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
             stroke_m: leg_state.stroke_m,
         };
     }
-    let moment_n_m = rotation.transpose() * moment_i;
+    let thrust = state.thrust;
+    let moment_n_m = rotation.transpose() * moment_i + thrust.moment_b_n_m;
     report.t_s = state.t_s;
     report.dt_s = dt;
     report.body = body;
     report.force_n = force_n;
     report.moment_n_m = moment_n_m;
+    report.thrust = thrust;
     rigid_body::integrate(
         &mut state.body,
         model.mass_kg,
         model.inertia_kg_m2,
         model.gravity_m_s2,
         force_n,
+        rotation * thrust.force_b_n,
         moment_n_m,
         dt,
     );
+    state.thrust.event_in_s -= dt;
     add_time(&mut state.t_s, &mut state.t_error_s, dt);
 }
 
@@ -168,7 +211,8 @@ pub fn add_time(t: &mut f64, error: &mut f64, dt: f64) {
 /// The step to take from `state`: `step_s` near the surface; in free flight up to
 /// `flight_step_max_s`, but only half the time in which a footpad could reach the highest
 /// point of the terrain, approaching at the CG speed plus rate times leg reach plus the
-/// speed gravity adds within a longest flight step. Never beyond `t_max_s`.
+/// speed gravity and thrust add within a longest flight step. Never beyond `t_max_s`, nor
+/// past the next control event.
 #[must_use]
 pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
     let remaining = model.t_max_s - state.t_s;
@@ -198,9 +242,10 @@ pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
             // time to cover the clearance at `speed` keeps them off the terrain by half of
             // it. (No root of the fall under gravity: one division, no square root.)
             let speed = body.rate_rad_s.length() * model.leg_reach_m()
-                + (body.velocity_m_s.length() + model.gravity_m_s2 * model.flight_step_max_s);
+                + (body.velocity_m_s.length() + model.gravity_m_s2 * model.flight_step_max_s)
+                + state.thrust.approach_m_s;
             dt = (0.5 * clearance / speed).clamp(model.step_s, model.flight_step_max_s);
         }
     }
-    dt.min(remaining)
+    dt.min(remaining).min(state.thrust.event_in_s)
 }

@@ -12,12 +12,24 @@ pub enum AttitudeReference {
     Surface,
 }
 
+/// Where a sample starts (MODEL.md section 8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Start {
+    /// At the end of the free fall, the fall not stepped: its velocity comes from the
+    /// release height.
+    Touchdown,
+    /// At the release, `release_height_m` above the touchdown point, the fall stepped (a
+    /// control loop acts during it).
+    Release,
+}
+
 /// The initial state besides the sampled inputs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Initial {
     pub attitude_reference: AttitudeReference,
-    /// Height of the lowest footpad above the surface at the start, m.
+    /// Height of the lowest footpad above the surface at touchdown, m.
     pub clearance_m: f64,
+    pub start: Start,
 }
 
 pub(super) fn read_initial(top: &mut Reader, d: &Initial) -> Result<Initial, ScenarioError> {
@@ -34,9 +46,21 @@ pub(super) fn read_initial(top: &mut Reader, d: &Initial) -> Result<Initial, Sce
             _ => AttitudeReference::Vertical,
         };
     let clearance_m = r.non_negative("clearance_m", d.clearance_m)?;
+    let start = match r.word(
+        "start",
+        match d.start {
+            Start::Touchdown => "touchdown",
+            Start::Release => "release",
+        },
+        &["touchdown", "release"],
+    )? {
+        "release" => Start::Release,
+        _ => Start::Touchdown,
+    };
     r.finish()?;
     Ok(Initial {
         attitude_reference,
         clearance_m,
+        start,
     })
 }

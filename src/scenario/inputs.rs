@@ -185,6 +185,32 @@ pub(super) fn read_inputs(
     Ok(Inputs::from_array(out))
 }
 
+/// Reads `key` of `r` as a number or a `{ dist = ..., ... }` table whose values are all at
+/// least `min` (`text` says so in an error), or gives `default` where it is absent: a
+/// scenario parameter that may be sampled like any input.
+pub(super) fn read_dist_at_least(
+    r: &mut Reader,
+    key: &'static str,
+    default: Dist,
+    min: f64,
+    text: &'static str,
+) -> Result<Dist, ScenarioError> {
+    match r.take(key) {
+        None => Ok(default),
+        Some(v) => read_dist(
+            r,
+            key,
+            &v,
+            &Range {
+                min,
+                max: f64::INFINITY,
+                max_open: false,
+                text,
+            },
+        ),
+    }
+}
+
 /// Reads a number or a `{ dist = ..., ... }` table.
 fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, ScenarioError> {
     let allowed_forms = "a number, or { dist = \"fixed\", value = x }, { dist = \"uniform\", min = a, max = b }, \

@@ -5,6 +5,7 @@
 //! is the commented file `default.toml` beside this module, which `touchdown scenario`
 //! prints and which a test proves equal to `Scenario::default()`.
 
+mod control;
 mod damper;
 mod initial;
 mod inputs;
@@ -13,15 +14,19 @@ mod outcome;
 mod reader;
 mod simulation;
 mod surface;
+mod thrusters;
 
+pub use control::{AttitudeHold, Control, HoldDown, Sensors, Target};
 pub use damper::{Damper, Stage, StrutAxes};
-pub use initial::{AttitudeReference, Initial};
+pub use initial::{AttitudeReference, Initial, Start};
 pub use inputs::{Dist, INPUT_FIELDS, Inputs};
 pub use lander::{Geometry, Lander};
 pub use outcome::Outcome;
 pub use simulation::Simulation;
 pub use surface::{Roughness, Surface};
+pub use thrusters::{G0_M_S2, MAX_THRUSTERS, Propulsion, Thruster};
 
+use control::read_control;
 use damper::read_damper;
 use initial::read_initial;
 use inputs::read_inputs;
@@ -32,6 +37,7 @@ use reader::Reader;
 use simulation::read_simulation;
 use std::fmt;
 use surface::read_surface;
+use thrusters::{read_propulsion, read_thrusters};
 
 /// The commented default scenario, as `touchdown scenario` prints it.
 pub const DEFAULT_TOML: &str = include_str!("default.toml");
@@ -99,6 +105,11 @@ pub struct Scenario {
     pub initial: Initial,
     pub simulation: Simulation,
     pub outcome: Outcome,
+    /// The thrusters (none by default: a passive lander).
+    pub thrusters: Vec<Thruster>,
+    pub propulsion: Propulsion,
+    /// The control loop that fires them, if any.
+    pub control: Option<Control>,
 }
 
 impl Default for Scenario {
@@ -175,6 +186,7 @@ impl Default for Scenario {
             initial: Initial {
                 attitude_reference: AttitudeReference::Vertical,
                 clearance_m: 0.001,
+                start: Start::Touchdown,
             },
             simulation: Simulation {
                 step_s: 0.001,
@@ -194,6 +206,13 @@ impl Default for Scenario {
                 early_sliding: true,
                 early_bouncing: true,
             },
+            thrusters: Vec::new(),
+            propulsion: Propulsion {
+                isp_s: 220.0,
+                thrust_error_sd: 0.0,
+                misalignment_sd_deg: 0.0,
+            },
+            control: None,
         }
     }
 }
@@ -265,6 +284,9 @@ impl Scenario {
         let initial = read_initial(&mut top, &d.initial)?;
         let simulation = read_simulation(&mut top, &d.simulation)?;
         let outcome = read_outcome(&mut top, &d.outcome)?;
+        let thrusters = read_thrusters(&mut top)?;
+        let propulsion = read_propulsion(&mut top, &d.propulsion)?;
+        let control = read_control(&mut top)?;
         top.finish()?;
         let s = Scenario {
             seed,
@@ -277,9 +299,13 @@ impl Scenario {
             initial,
             simulation,
             outcome,
+            thrusters,
+            propulsion,
+            control,
         };
         s.check_leg_counts()?;
         s.check_can_land()?;
+        crate::control::check(&s)?;
         Ok(s)
     }
 
@@ -384,18 +410,33 @@ impl Scenario {
         // The nominal touchdown (the highest release, no velocity error) must reach the
         // surface from its starting gap before t_max: else (nearly) no sample ever touches.
         let height = self.inputs.release_height_m.support().1;
-        let v = (2.0 * self.gravity_m_s2 * height).sqrt();
-        let gap = self.initial.clearance_m;
+        let (v, gap) = match self.initial.start {
+            Start::Touchdown => (
+                (2.0 * self.gravity_m_s2 * height).sqrt(),
+                self.initial.clearance_m,
+            ),
+            Start::Release => (0.0, height + self.initial.clearance_m),
+        };
         let reach_s = 2.0 * gap / (v + (v * v + 2.0 * self.gravity_m_s2 * gap).sqrt());
         if reach_s > self.simulation.t_max_s {
             return Err(invalid(
                 "simulation.t_max_s",
                 format!("{} s", self.simulation.t_max_s),
                 format!(
-                    "a run long enough to reach the surface: from initial.clearance_m = {gap} m \
-                     at {v:.4} m/s (released from inputs.release_height_m up to {height} m in \
-                     gravity_m_s2 = {g} m/s^2) the lander needs {reach_s:.3e} s, so no sample \
-                     would ever touch it",
+                    "a run long enough to reach the surface: {from} in gravity_m_s2 = {g} \
+                     m/s^2 the lander needs {reach_s:.3e} s, so no sample would ever touch it",
+                    from = match self.initial.start {
+                        Start::Touchdown => format!(
+                            "from initial.clearance_m = {gap} m at {v:.4} m/s (released from \
+                             inputs.release_height_m up to {height} m)"
+                        ),
+                        Start::Release => format!(
+                            "released at rest (initial.start = \"release\") from \
+                             inputs.release_height_m up to {height} m above initial.clearance_m \
+                             = {} m",
+                            self.initial.clearance_m
+                        ),
+                    },
                     g = self.gravity_m_s2
                 ),
             ));

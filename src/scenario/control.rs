@@ -1,0 +1,173 @@
+//! The `[control]` table: the control loop, its sensors and its laws (MODEL.md section 7).
+
+use super::ScenarioError;
+use super::inputs::{Dist, read_dist_at_least};
+use super::reader::Reader;
+
+/// The control loop: its rate, latency, sensors and laws. Laws combine by phase: before
+/// contact is sensed, `attitude_hold` (if given) holds the attitude through the fall;
+/// once it is sensed, `hold_down` (if given) pushes the lander onto the surface; after it,
+/// nothing fires.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Control {
+    /// Control instants per second: the sensors are read and a command issued at
+    /// `t = k / rate_hz`.
+    pub rate_hz: f64,
+    /// Whole control periods between a reading and the period its command acts in.
+    pub latency_periods: u32,
+    pub sensors: Sensors,
+    pub hold_down: Option<HoldDown>,
+    pub attitude_hold: Option<AttitudeHold>,
+}
+
+/// Sensor errors: the white noise of each reading (a new draw at every control instant)
+/// and the bias of each sample (drawn once), both normal with these standard deviations,
+/// per axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sensors {
+    pub attitude_noise_deg: f64,
+    pub attitude_bias_deg: f64,
+    pub rate_noise_deg_s: f64,
+    pub rate_bias_deg_s: f64,
+    pub velocity_noise_m_s: f64,
+    pub velocity_bias_m_s: f64,
+    pub altitude_noise_m: f64,
+    pub altitude_bias_m: f64,
+}
+
+/// `hold_down`: once contact is sensed, thrust along `-Z_B` through the CG.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HoldDown {
+    /// Mean thrust over a control period, N.
+    pub thrust_n: Dist,
+    /// How long it pushes, from the instant contact is sensed, s.
+    pub duration_s: Dist,
+    /// Whether it stops sooner, at the first instant at which the sensed speed and rate
+    /// have stayed below the rest thresholds (`[outcome]`) for `outcome.hold_time_s`.
+    pub until_rest: bool,
+}
+
+/// What `attitude_hold` aligns `Z_B` with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    /// The local vertical `Z_I`.
+    Vertical,
+    /// The surface normal (the lander knows the slope beneath it).
+    Normal,
+}
+
+/// `attitude_hold`: a PD law on the tilt of `Z_B` from its target and on the body rates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AttitudeHold {
+    pub target: Target,
+    /// Torque per radian of tilt error, N m/rad.
+    pub kp_n_m_per_rad: Dist,
+    /// Torque per rad/s of body rate, N m s/rad.
+    pub kd_n_m_s_per_rad: Dist,
+    /// Tilt errors below this give no proportional torque, deg.
+    pub deadband_deg: f64,
+}
+
+impl Default for Sensors {
+    fn default() -> Self {
+        Sensors {
+            attitude_noise_deg: 0.0,
+            attitude_bias_deg: 0.0,
+            rate_noise_deg_s: 0.0,
+            rate_bias_deg_s: 0.0,
+            velocity_noise_m_s: 0.0,
+            velocity_bias_m_s: 0.0,
+            altitude_noise_m: 0.0,
+            altitude_bias_m: 0.0,
+        }
+    }
+}
+
+pub(super) fn read_control(top: &mut Reader) -> Result<Option<Control>, ScenarioError> {
+    let Some(mut r) = top.table("control")? else {
+        return Ok(None);
+    };
+    let rate_hz = r.f64_where("rate_hz", 10.0, "a rate from 0.1 to 1000 Hz", |x| {
+        (0.1..=1000.0).contains(&x)
+    })?;
+    let latency_periods = r.integer("latency_periods", 1, 0, 16)? as u32;
+    let d = Sensors::default();
+    let sensors = match r.table("sensors")? {
+        None => d,
+        Some(mut s) => {
+            let out = Sensors {
+                attitude_noise_deg: s.non_negative("attitude_noise_deg", d.attitude_noise_deg)?,
+                attitude_bias_deg: s.non_negative("attitude_bias_deg", d.attitude_bias_deg)?,
+                rate_noise_deg_s: s.non_negative("rate_noise_deg_s", d.rate_noise_deg_s)?,
+                rate_bias_deg_s: s.non_negative("rate_bias_deg_s", d.rate_bias_deg_s)?,
+                velocity_noise_m_s: s.non_negative("velocity_noise_m_s", d.velocity_noise_m_s)?,
+                velocity_bias_m_s: s.non_negative("velocity_bias_m_s", d.velocity_bias_m_s)?,
+                altitude_noise_m: s.non_negative("altitude_noise_m", d.altitude_noise_m)?,
+                altitude_bias_m: s.non_negative("altitude_bias_m", d.altitude_bias_m)?,
+            };
+            s.finish()?;
+            out
+        }
+    };
+    let hold_down = match r.table("hold_down")? {
+        None => None,
+        Some(mut h) => {
+            let out = HoldDown {
+                thrust_n: read_dist_at_least(
+                    &mut h,
+                    "thrust_n",
+                    Dist::Fixed(20.0),
+                    0.0,
+                    "thrusts of at least 0 N",
+                )?,
+                duration_s: read_dist_at_least(
+                    &mut h,
+                    "duration_s",
+                    Dist::Fixed(10.0),
+                    0.0,
+                    "durations of at least 0 s",
+                )?,
+                until_rest: h.bool("until_rest", false)?,
+            };
+            h.finish()?;
+            Some(out)
+        }
+    };
+    let attitude_hold = match r.table("attitude_hold")? {
+        None => None,
+        Some(mut a) => {
+            let target = match a.word("target", "vertical", &["vertical", "normal"])? {
+                "normal" => Target::Normal,
+                _ => Target::Vertical,
+            };
+            let out = AttitudeHold {
+                target,
+                kp_n_m_per_rad: read_dist_at_least(
+                    &mut a,
+                    "kp_n_m_per_rad",
+                    Dist::Fixed(20.0),
+                    0.0,
+                    "gains of at least 0 N m/rad",
+                )?,
+                kd_n_m_s_per_rad: read_dist_at_least(
+                    &mut a,
+                    "kd_n_m_s_per_rad",
+                    Dist::Fixed(40.0),
+                    0.0,
+                    "gains of at least 0 N m s/rad",
+                )?,
+                deadband_deg: a.non_negative("deadband_deg", 0.0)?,
+            };
+            a.finish()?;
+            Some(out)
+        }
+    };
+    r.finish()?;
+    Ok(Some(Control {
+        rate_hz,
+        latency_periods,
+        sensors,
+        hold_down,
+        attitude_hold,
+    }))
+}
