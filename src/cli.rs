@@ -241,6 +241,27 @@ fn parse_every(s: &str) -> Result<u64, String> {
 }
 
 /// Runs a parsed command line.
+/// The `touchdown` program: parses the command line, runs it, prints an error and returns
+/// exit code 2 (or the code of an interruption) where it fails. A program that embeds
+/// touchdown, to register laws of its own (`control::register_law`), calls this from its
+/// `main`.
+#[must_use]
+pub fn main() -> std::process::ExitCode {
+    use clap::Parser;
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            if let Some(i) = e.downcast_ref::<Interrupted>() {
+                eprintln!("touchdown: {i}");
+                return std::process::ExitCode::from(i.code);
+            }
+            eprintln!("touchdown: error: {e:#}");
+            std::process::ExitCode::from(2)
+        }
+    }
+}
+
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Scenario => {

@@ -10,7 +10,7 @@
 
 use crate::reference::model::Surface;
 use crate::reference::step::Thrust;
-use crate::sampling::{normal_quantile, quantile, stream, uniform_open01};
+use crate::sampling::{Sample, normal_quantile, quantile, stream, uniform_open01};
 use crate::scenario::{Control, Dist, G0_M_S2, Scenario, ScenarioError, Target, Thruster};
 use glam::{DQuat, DVec3};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -218,11 +218,88 @@ fn nnls(columns: &[[f64; 6]], target: [f64; 6]) -> Vec<f64> {
     u
 }
 
+/// Numbers a law keeps per lander from one control instant to the next (`Law::command`).
+pub const LAW_MEMORY: usize = 8;
+
+/// What a law commands for one lander over the next control period.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LawCommand {
+    /// The force and torque (B) to give, as means over the period: the control loop shares
+    /// them among the thrusters (`Allocation`) and quantises the on-times.
+    pub wrench: Wrench,
+    /// The law will command nothing more for this lander: once its last firing is over the
+    /// lander is left to itself (its rest clock and the early rules count again).
+    pub done: bool,
+}
+
+/// A control law of the user's own, named by a scenario (`[control] law = "NAME"`) and
+/// registered under that name (`register_law`) by a program that embeds touchdown.
+///
+/// At every control instant the loop reads the sensors (with their noise, bias and
+/// latency as the scenario gives them) and asks the law for a command. The landers of a
+/// block that reach a control instant together are handed over at once, as slices of the
+/// same length: `sensed[i]` is what lander `i`'s sensors read, `memory[i]` what the law
+/// kept for that lander (zero at the start of its sample), and the law writes its command
+/// into `command[i]` (zero when it is called). The law commands in every phase until it
+/// says `done`; contact shows in `Sensed::contact` (the touchdown switches). Called from
+/// the sweep's worker threads: it must not depend on the order or grouping of landers, or
+/// a sweep would not give the same file for every thread count.
+pub trait Law: Send + Sync {
+    /// Commands for the landers of `sensed`.
+    fn command(
+        &self,
+        sensed: &[Sensed],
+        memory: &mut [[f64; LAW_MEMORY]],
+        command: &mut [LawCommand],
+    );
+}
+
+/// A registered law and its name.
+#[derive(Clone)]
+pub struct NamedLaw {
+    pub name: String,
+    pub law: std::sync::Arc<dyn Law>,
+}
+
+impl std::fmt::Debug for NamedLaw {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "law {:?}", self.name)
+    }
+}
+
+static LAWS: std::sync::Mutex<Vec<(String, std::sync::Arc<dyn Law>)>> =
+    std::sync::Mutex::new(Vec::new());
+
+/// Registers `law` under `name` for scenarios to name (`[control] law = "NAME"`): a
+/// program that embeds touchdown calls this before `cli::main` (see
+/// `examples/user_law.rs`). A later registration under the same name replaces it.
+pub fn register_law(name: &str, law: impl Law + 'static) {
+    let mut laws = LAWS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    laws.retain(|(n, _)| n != name);
+    laws.push((name.to_string(), std::sync::Arc::new(law)));
+}
+
+/// The law registered under `name`.
+#[must_use]
+pub fn registered(name: &str) -> Option<NamedLaw> {
+    let laws = LAWS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    laws.iter().find(|(n, _)| n == name).map(|(n, l)| NamedLaw {
+        name: n.clone(),
+        law: l.clone(),
+    })
+}
+
 /// What stays fixed over a sweep: the control loop of the scenario, the thrusters as
 /// designed, and what the step-size bound needs.
 #[derive(Debug, Clone)]
 pub struct ControlModel {
     pub config: Control,
+    /// The user's law the scenario names (`[control] law`), if any.
+    pub law: Option<NamedLaw>,
     pub thrusters: Vec<Thruster>,
     pub allocation: Allocation,
     pub period_s: f64,
@@ -245,6 +322,7 @@ impl ControlModel {
     pub fn of(s: &Scenario, leg_reach_m: f64) -> Option<ControlModel> {
         let config = s.control.clone()?;
         Some(ControlModel {
+            law: config.law.as_deref().and_then(registered),
             period_s: 1.0 / config.rate_hz,
             config,
             thrusters: s.thrusters.clone(),
@@ -270,8 +348,7 @@ impl ControlModel {
 
 /// Refuses a control loop that cannot work: one without thrusters or without a law, a
 /// hold-down the thrusters cannot push pure along `-Z_B` (or not as hard as asked), an
-/// attitude hold they cannot turn about `X_B` and `Y_B`, or sampled law parameters on a
-/// grid.
+/// attitude hold they cannot turn about `X_B` and `Y_B`.
 pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
     let invalid = |key: &str, value: String, allowed: String| ScenarioError::Invalid {
         key: key.to_string(),
@@ -288,29 +365,49 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
             "[[thrusters]] for it to fire: a control loop without thrusters does nothing".into(),
         ));
     }
-    if c.hold_down.is_none() && c.attitude_hold.is_none() {
-        return Err(invalid(
-            "control",
-            "no law".into(),
-            "a law for the loop to run: [control.hold_down] or [control.attitude_hold]".into(),
-        ));
-    }
-    let grid = |key: &str, d: &Dist| -> Result<(), ScenarioError> {
-        if matches!(d, Dist::Grid { .. }) {
+    if let Some(name) = &c.law {
+        if c.hold_down.is_some() || c.attitude_hold.is_some() {
             return Err(invalid(
-                key,
-                "a grid".into(),
-                "a number or a fixed, uniform or normal distribution (law parameters are \
-                 drawn per sample, not on the inputs' grid)"
+                "control.law",
+                format!("{name:?}"),
+                "either a law of your own or the built-in laws ([control.hold_down], \
+                 [control.attitude_hold]), not both: your law commands in every phase"
                     .into(),
             ));
         }
-        Ok(())
-    };
+        if registered(name).is_none() {
+            let laws = LAWS
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            let known: Vec<String> = laws.iter().map(|(n, _)| format!("{n:?}")).collect();
+            return Err(invalid(
+                "control.law",
+                format!("{name:?}"),
+                if known.is_empty() {
+                    "the name of a law registered by the program running the sweep; this \
+                     program registers none (the `touchdown` binary has only the built-in \
+                     laws: a program that embeds touchdown registers its own, see \
+                     examples/user_law.rs)"
+                        .into()
+                } else {
+                    format!(
+                        "one of the laws this program registers: {}",
+                        known.join(", ")
+                    )
+                },
+            ));
+        }
+    } else if c.hold_down.is_none() && c.attitude_hold.is_none() {
+        return Err(invalid(
+            "control",
+            "no law".into(),
+            "a law for the loop to run: [control.hold_down], [control.attitude_hold] or \
+             law = \"NAME\" (one of your own)"
+                .into(),
+        ));
+    }
     let allocation = Allocation::new(&s.thrusters);
     if let Some(h) = &c.hold_down {
-        grid("control.hold_down.thrust_n", &h.thrust_n)?;
-        grid("control.hold_down.duration_s", &h.duration_s)?;
         let most = h.thrust_n.support().1;
         if most > 0.0 {
             let Some(unit) = &allocation.unit[5] else {
@@ -323,8 +420,11 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
                         .into(),
                 ));
             };
+            // The unit allocation is shrunk by the ridge of `nnls` (about 1e-9 of it), so
+            // the capacity it implies is that much short: the full thrust of the cluster is
+            // allowed within `PURE_TOLERANCE`.
             let capacity = 1.0 / unit.iter().copied().fold(0.0, f64::max);
-            if most > capacity * (1.0 + 1e-9) {
+            if most > capacity * (1.0 + PURE_TOLERANCE) {
                 return Err(invalid(
                     "control.hold_down.thrust_n",
                     format!("up to {most} N"),
@@ -336,21 +436,14 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
             }
         }
     }
-    if let Some(a) = &c.attitude_hold {
-        grid("control.attitude_hold.kp_n_m_per_rad", &a.kp_n_m_per_rad)?;
-        grid(
-            "control.attitude_hold.kd_n_m_s_per_rad",
-            &a.kd_n_m_s_per_rad,
-        )?;
-        if !(6..10).all(|k| allocation.can(k)) {
-            return Err(invalid(
-                "control.attitude_hold",
-                "[[thrusters]]".into(),
-                "thrusters that give a pure torque both ways about X_B and Y_B (couples: \
-                 pairs of opposite forces on either side of the CG)"
-                    .into(),
-            ));
-        }
+    if c.attitude_hold.is_some() && !(6..10).all(|k| allocation.can(k)) {
+        return Err(invalid(
+            "control.attitude_hold",
+            "[[thrusters]]".into(),
+            "thrusters that give a pure torque both ways about X_B and Y_B (couples: pairs \
+             of opposite forces on either side of the CG)"
+                .into(),
+        ));
     }
     Ok(())
 }
@@ -372,6 +465,8 @@ pub struct Truth {
 /// What the sensors report at a control instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sensed {
+    /// Time of the control instant, s: `k` periods at the `k`-th instant (the flight
+    /// computer's clock).
     pub t_s: f64,
     /// Attitude, B to I.
     pub attitude: DQuat,
@@ -392,6 +487,8 @@ pub enum Phase {
     Fall,
     /// Hold-down since the instant at `since_s`, at rest (sensed) for `rest_s`.
     HoldDown { since_s: f64, rest_s: f64 },
+    /// The user's law commands (until it says it is done).
+    User,
     /// Nothing more to fire.
     Done,
 }
@@ -458,6 +555,12 @@ pub struct LaneControl {
     impulse_n_s: f64,
     /// What the sensors read at the last control instant.
     last_sensed: Option<Sensed>,
+    /// Whether the event under way is a control instant (`begin` to `end`).
+    instant_due: bool,
+    /// Control instants so far.
+    instants: u64,
+    /// The user's law's memory for this lander.
+    memory: [f64; LAW_MEMORY],
     /// Which thrusters fire in the segment under way.
     firing_now: [bool; crate::scenario::MAX_THRUSTERS],
     pub summary: ControlSummary,
@@ -489,9 +592,10 @@ fn normal3(rng: &mut Xoshiro256PlusPlus, sd: f64) -> DVec3 {
     DVec3::new(normal(rng, sd), normal(rng, sd), normal(rng, sd))
 }
 
-/// A draw of `dist` for the sample with generator seed `seed` (its own stream, `name`).
-fn draw(dist: &Dist, seed: u64, name: &str) -> f64 {
-    quantile(dist, uniform_open01(&mut stream(seed, name)), 0)
+/// A draw of `dist` for the sample with generator seed `seed` (its own stream, `name`), at
+/// `grid_index` where `dist` is a grid.
+fn draw(dist: &Dist, seed: u64, name: &str, grid_index: u64) -> f64 {
+    quantile(dist, uniform_open01(&mut stream(seed, name)), grid_index)
 }
 
 /// A normal draw truncated at three standard deviations (0 for `sd` 0).
@@ -521,10 +625,11 @@ fn small_rotation(v: DVec3) -> DQuat {
 const TIME_DUST_S: f64 = 1e-12;
 
 impl LaneControl {
-    /// The control loop of the sample with generator seed `seed`: its thruster errors,
-    /// sensor biases and law parameters drawn from streams of its own.
+    /// The control loop of `sample`: its thruster errors, sensor biases and law parameters
+    /// drawn from streams of its own (law parameters on a grid at the sample's point of it).
     #[must_use]
-    pub fn new(m: &ControlModel, seed: u64) -> LaneControl {
+    pub fn new(m: &ControlModel, sample: &Sample) -> LaneControl {
+        let (seed, g) = (sample.seed, sample.law_grid);
         let mut errors = stream(seed, "thrusters");
         let (mut force_b_n, mut moment_b_n_m) = (Vec::new(), Vec::new());
         for t in &m.thrusters {
@@ -547,14 +652,14 @@ impl LaneControl {
         let (hold_down_thrust_n, hold_down_duration_s) =
             m.config.hold_down.map_or((nan, nan), |h| {
                 (
-                    draw(&h.thrust_n, seed, "hold_down_thrust_n"),
-                    draw(&h.duration_s, seed, "hold_down_duration_s"),
+                    draw(&h.thrust_n, seed, "hold_down_thrust_n", g[0]),
+                    draw(&h.duration_s, seed, "hold_down_duration_s", g[1]),
                 )
             });
         let (kp_n_m_per_rad, kd_n_m_s_per_rad) = m.config.attitude_hold.map_or((nan, nan), |a| {
             (
-                draw(&a.kp_n_m_per_rad, seed, "kp_n_m_per_rad"),
-                draw(&a.kd_n_m_s_per_rad, seed, "kd_n_m_s_per_rad"),
+                draw(&a.kp_n_m_per_rad, seed, "kp_n_m_per_rad", g[2]),
+                draw(&a.kd_n_m_s_per_rad, seed, "kd_n_m_s_per_rad", g[3]),
             )
         });
         LaneControl {
@@ -565,7 +670,11 @@ impl LaneControl {
             rate_bias_rad_s,
             velocity_bias_m_s,
             altitude_bias_m,
-            phase: Phase::Fall,
+            phase: if m.law.is_some() {
+                Phase::User
+            } else {
+                Phase::Fall
+            },
             queue: Vec::with_capacity(m.config.latency_periods as usize + 1),
             current: IDLE,
             period_left_s: 0.0,
@@ -576,6 +685,9 @@ impl LaneControl {
             powered: true,
             impulse_n_s: 0.0,
             last_sensed: None,
+            instant_due: false,
+            instants: 0,
+            memory: [0.0; LAW_MEMORY],
             firing_now: [false; crate::scenario::MAX_THRUSTERS],
             summary: ControlSummary {
                 hold_down_thrust_n,
@@ -611,15 +723,35 @@ impl LaneControl {
         out.phase = match self.phase {
             Phase::Fall => "fall",
             Phase::HoldDown { .. } => "hold_down",
+            Phase::User => "user",
             Phase::Done => "done",
         };
     }
 
     /// Takes in the event that ended the segment under way (or starts the loop: the first
-    /// call, at `t = 0`) and returns the thrust until the next event.
+    /// call, at `t = 0`) and returns the thrust until the next event: `begin`, the user's
+    /// law for this lander alone where `begin` asks for it, and `end`.
     pub fn event(&mut self, m: &ControlModel, truth: &Truth) -> Thrust {
+        let mut command = LawCommand::default();
+        let asked = self.begin(m, truth).map(|sensed| {
+            if let Some(law) = &m.law {
+                law.law.command(
+                    std::slice::from_ref(&sensed),
+                    std::slice::from_mut(&mut self.memory),
+                    std::slice::from_mut(&mut command),
+                );
+            }
+        });
+        self.end(m, truth, asked.map(|()| &command))
+    }
+
+    /// The first half of `event`: accounts for the segment that ended and, at a control
+    /// instant, reads the sensors. Returns the reading where the user's law must command
+    /// (`Law::command`, with `memory()`), for `end` to take its command.
+    pub fn begin(&mut self, m: &ControlModel, truth: &Truth) -> Option<Sensed> {
+        self.instant_due = false;
         if !self.powered {
-            return Thrust::NONE;
+            return None;
         }
         let elapsed = self.segment_s;
         self.spend(elapsed);
@@ -631,8 +763,29 @@ impl LaneControl {
                 *on = 0.0;
             }
         }
-        if self.period_left_s < TIME_DUST_S {
-            self.instant(m, truth);
+        if self.period_left_s >= TIME_DUST_S {
+            return None;
+        }
+        self.instant_due = true;
+        let sensed = self.sense(m, truth);
+        self.last_sensed = Some(sensed);
+        (m.law.is_some() && self.phase == Phase::User).then_some(sensed)
+    }
+
+    /// This lander's memory for the user's law (zero at the start of its sample).
+    pub fn memory(&mut self) -> &mut [f64; LAW_MEMORY] {
+        &mut self.memory
+    }
+
+    /// The second half of `event`: at a control instant, the command (the user's law's,
+    /// `user`, where `begin` asked for one), and the thrust until the next event.
+    pub fn end(&mut self, m: &ControlModel, truth: &Truth, user: Option<&LawCommand>) -> Thrust {
+        if !self.powered {
+            return Thrust::NONE;
+        }
+        let n = m.thrusters.len();
+        if self.instant_due {
+            self.instant(m, truth, user);
         }
         let mut segment = self.period_left_s;
         let (mut force, mut moment, mut flow, mut firing) = (DVec3::ZERO, DVec3::ZERO, 0.0, 0);
@@ -698,11 +851,10 @@ impl LaneControl {
 
     /// A control instant: read the sensors, advance the phase, issue a command, and start
     /// the period of the command whose latency has passed.
-    fn instant(&mut self, m: &ControlModel, truth: &Truth) {
+    fn instant(&mut self, m: &ControlModel, truth: &Truth, user: Option<&LawCommand>) {
         let c = &m.config;
-        let sensed = self.sense(m, truth);
-        self.last_sensed = Some(sensed);
-        let t = truth.t_s;
+        let sensed = self.last_sensed.expect("begin read the sensors");
+        let t = sensed.t_s;
         if self.phase == Phase::Fall && sensed.contact {
             let (thrust, duration) = (
                 self.summary.hold_down_thrust_n,
@@ -735,6 +887,13 @@ impl LaneControl {
             };
         }
         let (wrench, hold_down) = match self.phase {
+            Phase::User => {
+                let command = user.copied().unwrap_or_default();
+                if command.done {
+                    self.phase = Phase::Done;
+                }
+                (command.wrench, false)
+            }
             Phase::Fall => (self.attitude_hold(m, &sensed, truth.normal), false),
             Phase::HoldDown { .. } => (
                 Wrench {
@@ -777,8 +936,12 @@ impl LaneControl {
         let altitude = truth.normal.dot(truth.position_m)
             + self.altitude_bias_m
             + normal(r, s.altitude_noise_m);
+        // The flight computer's clock: instant k is at k periods, the same in every
+        // precision (the true time of the step that reached it differs by roundings).
+        let t_s = self.instants as f64 * m.period_s;
+        self.instants += 1;
         Sensed {
-            t_s: truth.t_s,
+            t_s,
             attitude: truth.attitude * small_rotation(attitude_error),
             rate_rad_s: rate,
             velocity_m_s: velocity,

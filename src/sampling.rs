@@ -11,7 +11,7 @@
 //! differ in the last bit between CPUs with and without FMA: a sample's inputs are the same
 //! bits on every machine.
 
-use crate::scenario::{Dist, INPUT_FIELDS, Inputs, Scenario};
+use crate::scenario::{Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, Scenario};
 use rand_core::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -26,6 +26,9 @@ pub struct Sample {
     pub terrain_tile: u32,
     /// Offset of the landing point in the tile, along the slope's tangent axes, m.
     pub terrain_offset_m: [f64; 2],
+    /// Grid coordinates of the control laws' parameters (`Control::parameters`; 0 where a
+    /// parameter is not on a grid): their values are drawn with the control loop.
+    pub law_grid: [u64; LAW_PARAMETERS],
 }
 
 /// SplitMix64's output function: a bijective mix of 64 bits.
@@ -197,10 +200,10 @@ pub fn stream(sample_seed: u64, name: &str) -> Xoshiro256PlusPlus {
     Xoshiro256PlusPlus::seed_from_u64(sample_seed ^ name_key(name))
 }
 
-/// The grid coordinates of sample `index`: mixed radix over the grid inputs, the last
-/// grid input varying fastest, cycling through the product of the grid sizes.
-fn grid_indices(dists: &[Dist; 12], index: u64) -> [u64; 12] {
-    let mut out = [0u64; 12];
+/// The grid coordinates of sample `index`: mixed radix over the grid distributions of
+/// `dists`, the last varying fastest, cycling through the product of the grid sizes.
+fn grid_indices<const N: usize>(dists: &[Dist; N], index: u64) -> [u64; N] {
+    let mut out = [0u64; N];
     let mut rest = index;
     for (o, d) in out.iter_mut().zip(dists).rev() {
         if let Dist::Grid { count, .. } = d {
@@ -211,12 +214,27 @@ fn grid_indices(dists: &[Dist; 12], index: u64) -> [u64; 12] {
     out
 }
 
-/// Number of points of the input grid (1 when no input is a grid).
+/// The distributions on the grid of `scenario`: its inputs, then its control laws'
+/// parameters (a fixed 0 where it has no such law).
+fn grid_dists(scenario: &Scenario) -> [Dist; INPUT_FIELDS.len() + LAW_PARAMETERS] {
+    let inputs = scenario.inputs.to_array();
+    let laws = scenario
+        .control
+        .as_ref()
+        .map_or([None; LAW_PARAMETERS], |c| c.parameters());
+    std::array::from_fn(|k| {
+        if k < inputs.len() {
+            inputs[k]
+        } else {
+            laws[k - inputs.len()].unwrap_or(Dist::Fixed(0.0))
+        }
+    })
+}
+
+/// Number of points of the grid (1 when no input or law parameter is a grid).
 #[must_use]
 pub fn grid_size(scenario: &Scenario) -> u128 {
-    scenario
-        .inputs
-        .to_array()
+    grid_dists(scenario)
         .iter()
         .map(|d| match d {
             Dist::Grid { count, .. } => u128::from(*count),
@@ -236,7 +254,7 @@ pub fn grid_size(scenario: &Scenario) -> u128 {
 pub fn sample(scenario: &Scenario, index: u64) -> Sample {
     let seed = sample_seed(scenario.seed, index);
     let dists = scenario.inputs.to_array();
-    let grid = grid_indices(&dists, index);
+    let grid = grid_indices(&grid_dists(scenario), index);
     let mut values = [0.0; INPUT_FIELDS.len()];
     for (((v, d), g), (name, _)) in values.iter_mut().zip(&dists).zip(grid).zip(INPUT_FIELDS) {
         *v = quantile(d, uniform_open01(&mut stream(seed, name)), g);
@@ -258,6 +276,7 @@ pub fn sample(scenario: &Scenario, index: u64) -> Sample {
         inputs: Inputs::from_array(values),
         terrain_tile,
         terrain_offset_m,
+        law_grid: std::array::from_fn(|k| grid[INPUT_FIELDS.len() + k]),
     }
 }
 
@@ -452,5 +471,35 @@ mod tests {
         assert_eq!(pick(3), (10.0, 0.0));
         assert_eq!(pick(14), (40.0, 90.0));
         assert_eq!(pick(15), (0.0, 0.0));
+    }
+
+    #[test]
+    fn law_parameters_on_a_grid_follow_the_inputs_last_fastest() {
+        let mut text = String::from(
+            "[inputs]\nslope_deg = { dist = \"grid\", min = 0.0, max = 20.0, count = 3 }\n",
+        );
+        for (x, y) in [(0.3, 0.0), (-0.3, 0.0), (0.0, 0.3), (0.0, -0.3)] {
+            text += &format!(
+                "[[thrusters]]\nposition_m = [{x}, {y}, 0.3]\ndirection = [0.0, 0.0, -1.0]\n\
+                 max_thrust_n = 10.0\nmin_on_time_s = 0.02\n"
+            );
+        }
+        text += "[control]\n[control.hold_down]\n\
+                 thrust_n = { dist = \"grid\", min = 0.0, max = 40.0, count = 9 }\n\
+                 duration_s = { dist = \"grid\", min = 5.0, max = 20.0, count = 4 }\n";
+        let s = Scenario::from_toml(&text).unwrap();
+        assert_eq!(grid_size(&s), 3 * 9 * 4);
+        let pick = |i| {
+            let x = sample(&s, i);
+            (x.inputs.slope_deg, x.law_grid)
+        };
+        assert_eq!(pick(0), (0.0, [0, 0, 0, 0]));
+        assert_eq!(pick(1), (0.0, [0, 1, 0, 0]));
+        assert_eq!(pick(4), (0.0, [1, 0, 0, 0]));
+        assert_eq!(pick(36), (10.0, [0, 0, 0, 0]));
+        assert_eq!(pick(107), (20.0, [8, 3, 0, 0]));
+        assert_eq!(pick(108), (0.0, [0, 0, 0, 0]));
+        // Without a control loop nothing joins the grid.
+        assert_eq!(sample(&Scenario::default(), 5).law_grid, [0; 4]);
     }
 }

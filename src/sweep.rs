@@ -7,7 +7,7 @@
 //! of rows whatever the sample count; blocks keep their lanes from one window to the next,
 //! so the last (longest) samples of a window do not leave the block half empty.
 
-use crate::control::{LaneControl, Truth};
+use crate::control::{ControlModel, LAW_MEMORY, LaneControl, LawCommand, Sensed, Truth};
 use crate::reference::model::Surface;
 use crate::reference::outcome::{LegSummary, Outcome, Summary};
 use crate::reference::step::Thrust;
@@ -230,7 +230,8 @@ fn lane_truth<L: Lane>(block: &Block<L>, i: usize, contact: bool) -> Truth {
 }
 
 /// The thrust the control loop returned, as a lane takes it.
-fn lane_thrust(t: &Thrust) -> LaneThrust {
+#[must_use]
+pub fn lane_thrust(t: &Thrust) -> LaneThrust {
     LaneThrust {
         force_b_n: t.force_b_n.to_array(),
         moment_b_n_m: t.moment_b_n_m.to_array(),
@@ -309,7 +310,7 @@ impl<K: Kernel> Worker<K> {
             self.block.load(i, &lane_init(model, &s));
             self.samples[i] = Some(s);
             if let Some(m) = &model.control {
-                let mut c = LaneControl::new(m, s.seed);
+                let mut c = LaneControl::new(m, &s);
                 let truth = lane_truth(&self.block, i, false);
                 self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
                 self.control[i] = Some(c);
@@ -317,6 +318,70 @@ impl<K: Kernel> Worker<K> {
         } else {
             self.block.retire(i);
             self.samples[i] = None;
+        }
+    }
+
+    /// The control events of the lanes of `events` (lane `i` in bit `i`): each lane's loop
+    /// takes in its event and sets its thrust until the next; the lanes at a control
+    /// instant whose loop runs the user's law are handed to it together.
+    fn control_events(&mut self, m: &ControlModel, events: u32) {
+        let mut truths = [None; MAX_LANES];
+        let mut asking = [0usize; MAX_LANES];
+        let mut sensed = [None; MAX_LANES];
+        let mut count = 0;
+        for i in (0..K::LANES).filter(|i| events & (1 << i) != 0) {
+            let contact = self
+                .block
+                .leg_step
+                .iter()
+                .any(|l| l.penetration_m.lane(i) > 0.0);
+            let truth = lane_truth(&self.block, i, contact);
+            let c = self.control[i]
+                .as_mut()
+                .expect("a lane with events has a loop");
+            if let Some(s) = c.begin(m, &truth) {
+                asking[count] = i;
+                sensed[count] = Some(s);
+                count += 1;
+            }
+            truths[i] = Some(truth);
+        }
+        let mut commands = [LawCommand::default(); MAX_LANES];
+        if count > 0
+            && let Some(law) = &m.law
+        {
+            let readings: [Sensed; MAX_LANES] =
+                std::array::from_fn(|k| sensed[k].unwrap_or(sensed[0].expect("one asks")));
+            let mut memory = [[0.0; LAW_MEMORY]; MAX_LANES];
+            for (k, &i) in asking[..count].iter().enumerate() {
+                memory[k] = *self.control[i]
+                    .as_mut()
+                    .expect("asking lanes have a loop")
+                    .memory();
+            }
+            law.law.command(
+                &readings[..count],
+                &mut memory[..count],
+                &mut commands[..count],
+            );
+            for (k, &i) in asking[..count].iter().enumerate() {
+                *self.control[i]
+                    .as_mut()
+                    .expect("asking lanes have a loop")
+                    .memory() = memory[k];
+            }
+        }
+        for i in (0..K::LANES).filter(|i| events & (1 << i) != 0) {
+            let truth = truths[i].expect("every event lane has its truth");
+            let user = asking[..count]
+                .iter()
+                .position(|&a| a == i)
+                .map(|k| &commands[k]);
+            let c = self.control[i]
+                .as_mut()
+                .expect("a lane with events has a loop");
+            self.block
+                .set_thrust(i, &lane_thrust(&c.end(m, &truth, user)));
         }
     }
 
@@ -374,18 +439,7 @@ impl<K: Kernel> Worker<K> {
             if advanced.events != 0
                 && let Some(m) = &model.control
             {
-                for i in (0..K::LANES).filter(|i| advanced.events & (1 << i) != 0) {
-                    let contact = self
-                        .block
-                        .leg_step
-                        .iter()
-                        .any(|l| l.penetration_m.lane(i) > 0.0);
-                    let truth = lane_truth(&self.block, i, contact);
-                    let c = self.control[i]
-                        .as_mut()
-                        .expect("a lane with events has a loop");
-                    self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
-                }
+                self.control_events(m, advanced.events);
             }
         }
         (rows, stats)

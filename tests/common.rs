@@ -1,6 +1,9 @@
 //! Helpers shared by the end-to-end tests of the command line (`cli`, `sweep_cli`): fresh
-//! temp folders, runs of the `touchdown` binary, bad-input checks and the Python readers.
+//! temp folders, runs of the `touchdown` binary, bad-input checks and the Python readers;
+//! and the table of measured against expected values of the validation tests
+//! (`validation`, `thrust`).
 
+use std::fmt::Write as _;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -373,4 +376,165 @@ pub(crate) fn run_python_check(script: &str, args: &[&std::ffi::OsStr], what: &s
         String::from_utf8_lossy(&o.stdout),
         String::from_utf8_lossy(&o.stderr)
     );
+}
+
+/// The measured-against-expected rows of one test, printed together at the end; the test
+/// fails on `finish` if any row failed.
+pub(crate) struct Table {
+    name: &'static str,
+    text: String,
+    failures: Vec<String>,
+}
+
+impl Table {
+    pub(crate) fn new(name: &'static str) -> Table {
+        let mut text = String::new();
+        writeln!(
+            text,
+            "\n== {name}\n{:<64} {:<34} {:>14} {:>14} {:>11} {:>11}  ok",
+            "case", "quantity", "measured", "expected", "error", "tolerance"
+        )
+        .unwrap();
+        Table {
+            name,
+            text,
+            failures: Vec::new(),
+        }
+    }
+
+    pub(crate) fn row(&mut self, case: &str, quantity: &str, values: [String; 4], ok: bool) {
+        let [m, e, err, tol] = values;
+        let mark = if ok { "ok" } else { "FAIL" };
+        writeln!(
+            self.text,
+            "{case:<64} {quantity:<34} {m:>14} {e:>14} {err:>11} {tol:>11}  {mark}"
+        )
+        .unwrap();
+        if !ok {
+            let tolerance = if tol.is_empty() {
+                String::new()
+            } else {
+                format!(" (tolerance {tol})")
+            };
+            self.failures
+                .push(format!("{case}: {quantity} = {m}, expected {e}{tolerance}"));
+        }
+    }
+
+    /// `|measured - expected| <= tolerance`.
+    pub(crate) fn close(
+        &mut self,
+        case: &str,
+        quantity: &str,
+        measured: f64,
+        expected: f64,
+        tolerance: f64,
+    ) {
+        let error = (measured - expected).abs();
+        self.row(
+            case,
+            quantity,
+            [g(measured), g(expected), g(error), g(tolerance)],
+            error <= tolerance,
+        );
+    }
+
+    /// `|measured / expected - 1| <= tolerance`.
+    pub(crate) fn relative(
+        &mut self,
+        case: &str,
+        quantity: &str,
+        measured: f64,
+        expected: f64,
+        tolerance: f64,
+    ) {
+        let error = (measured / expected - 1.0).abs();
+        self.row(
+            case,
+            quantity,
+            [g(measured), g(expected), pct(error), pct(tolerance)],
+            error <= tolerance,
+        );
+    }
+
+    /// `measured <= limit` (an error that should vanish).
+    pub(crate) fn at_most(&mut self, case: &str, quantity: &str, measured: f64, limit: f64) {
+        self.row(
+            case,
+            quantity,
+            [
+                g(measured),
+                format!("<= {}", g(limit)),
+                String::new(),
+                String::new(),
+            ],
+            measured <= limit,
+        );
+    }
+
+    /// `measured >= limit`.
+    pub(crate) fn at_least(&mut self, case: &str, quantity: &str, measured: f64, limit: f64) {
+        self.row(
+            case,
+            quantity,
+            [
+                g(measured),
+                format!(">= {}", g(limit)),
+                String::new(),
+                String::new(),
+            ],
+            measured >= limit,
+        );
+    }
+
+    /// A discrete result, e.g. an outcome.
+    pub(crate) fn equal<T: std::fmt::Debug + PartialEq>(
+        &mut self,
+        case: &str,
+        quantity: &str,
+        measured: T,
+        expected: T,
+    ) {
+        let ok = measured == expected;
+        self.row(
+            case,
+            quantity,
+            [
+                format!("{measured:?}"),
+                format!("{expected:?}"),
+                String::new(),
+                String::new(),
+            ],
+            ok,
+        );
+    }
+
+    pub(crate) fn finish(self) {
+        println!("{}", self.text);
+        assert!(
+            self.failures.is_empty(),
+            "{}: {} check(s) failed:\n  {}",
+            self.name,
+            self.failures.len(),
+            self.failures.join("\n  ")
+        );
+    }
+}
+
+/// A number in a short, readable form.
+pub(crate) fn g(x: f64) -> String {
+    if x == 0.0 || (1e-3..1e5).contains(&x.abs()) {
+        format!("{x:.6}")
+    } else {
+        format!("{x:.4e}")
+    }
+}
+
+/// A fraction as a percentage.
+pub(crate) fn pct(x: f64) -> String {
+    if x == 0.0 || 100.0 * x >= 0.01 {
+        format!("{:.3} %", 100.0 * x)
+    } else {
+        format!("{:.1e} %", 100.0 * x)
+    }
 }

@@ -15,4 +15,6 @@ mod scenarios;
 mod shards;
 mod studies;
 mod sweep_cli;
+mod thrust;
+mod user_law;
 mod validation;

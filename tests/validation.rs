@@ -6,9 +6,9 @@
 //! fails if any row failed, so that `cargo test --release --test tests validation --
 //! --nocapture` shows every number, passing or not.
 
+use crate::common::Table;
 use glam::{DMat3, DVec3};
 use std::f64::consts::PI;
-use std::fmt::Write as _;
 use touchdown::reference::step::{step, step_size};
 use touchdown::reference::{
     Model, Outcome, State, StepReport, Summary, Surface, initial_state, run,
@@ -33,6 +33,7 @@ fn sample_of(inputs: Inputs<f64>) -> Sample {
         inputs,
         terrain_tile: 0,
         terrain_offset_m: [0.0; 2],
+        law_grid: [0; 4],
     }
 }
 
@@ -207,160 +208,6 @@ impl Sim {
 /// Runs a scenario's sample to its classified outcome with `reference::run`.
 fn classify(scenario: &Scenario, inputs: Inputs<f64>) -> Summary {
     run(&Model::new(scenario), &sample_of(inputs), |_| {})
-}
-
-/// The measured-against-expected rows of one test, printed together at the end; the test
-/// fails on `finish` if any row failed.
-struct Table {
-    name: &'static str,
-    text: String,
-    failures: Vec<String>,
-}
-
-impl Table {
-    fn new(name: &'static str) -> Table {
-        let mut text = String::new();
-        writeln!(
-            text,
-            "\n== {name}\n{:<60} {:<32} {:>14} {:>14} {:>11} {:>11}  ok",
-            "case", "quantity", "measured", "expected", "error", "tolerance"
-        )
-        .unwrap();
-        Table {
-            name,
-            text,
-            failures: Vec::new(),
-        }
-    }
-
-    fn row(&mut self, case: &str, quantity: &str, values: [String; 4], ok: bool) {
-        let [m, e, err, tol] = values;
-        let mark = if ok { "ok" } else { "FAIL" };
-        writeln!(
-            self.text,
-            "{case:<60} {quantity:<32} {m:>14} {e:>14} {err:>11} {tol:>11}  {mark}"
-        )
-        .unwrap();
-        if !ok {
-            let tolerance = if tol.is_empty() {
-                String::new()
-            } else {
-                format!(" (tolerance {tol})")
-            };
-            self.failures
-                .push(format!("{case}: {quantity} = {m}, expected {e}{tolerance}"));
-        }
-    }
-
-    /// `|measured - expected| <= tolerance`.
-    fn close(&mut self, case: &str, quantity: &str, measured: f64, expected: f64, tolerance: f64) {
-        let error = (measured - expected).abs();
-        self.row(
-            case,
-            quantity,
-            [g(measured), g(expected), g(error), g(tolerance)],
-            error <= tolerance,
-        );
-    }
-
-    /// `|measured / expected - 1| <= tolerance`.
-    fn relative(
-        &mut self,
-        case: &str,
-        quantity: &str,
-        measured: f64,
-        expected: f64,
-        tolerance: f64,
-    ) {
-        let error = (measured / expected - 1.0).abs();
-        self.row(
-            case,
-            quantity,
-            [g(measured), g(expected), pct(error), pct(tolerance)],
-            error <= tolerance,
-        );
-    }
-
-    /// `measured <= limit` (an error that should vanish).
-    fn at_most(&mut self, case: &str, quantity: &str, measured: f64, limit: f64) {
-        self.row(
-            case,
-            quantity,
-            [
-                g(measured),
-                format!("<= {}", g(limit)),
-                String::new(),
-                String::new(),
-            ],
-            measured <= limit,
-        );
-    }
-
-    /// `measured >= limit`.
-    fn at_least(&mut self, case: &str, quantity: &str, measured: f64, limit: f64) {
-        self.row(
-            case,
-            quantity,
-            [
-                g(measured),
-                format!(">= {}", g(limit)),
-                String::new(),
-                String::new(),
-            ],
-            measured >= limit,
-        );
-    }
-
-    /// A discrete result, e.g. an outcome.
-    fn equal<T: std::fmt::Debug + PartialEq>(
-        &mut self,
-        case: &str,
-        quantity: &str,
-        measured: T,
-        expected: T,
-    ) {
-        let ok = measured == expected;
-        self.row(
-            case,
-            quantity,
-            [
-                format!("{measured:?}"),
-                format!("{expected:?}"),
-                String::new(),
-                String::new(),
-            ],
-            ok,
-        );
-    }
-
-    fn finish(self) {
-        println!("{}", self.text);
-        assert!(
-            self.failures.is_empty(),
-            "{}: {} check(s) failed:\n  {}",
-            self.name,
-            self.failures.len(),
-            self.failures.join("\n  ")
-        );
-    }
-}
-
-/// A number in a short, readable form.
-fn g(x: f64) -> String {
-    if x == 0.0 || (1e-3..1e5).contains(&x.abs()) {
-        format!("{x:.6}")
-    } else {
-        format!("{x:.4e}")
-    }
-}
-
-/// A fraction as a percentage.
-fn pct(x: f64) -> String {
-    if x == 0.0 || 100.0 * x >= 0.01 {
-        format!("{:.3} %", 100.0 * x)
-    } else {
-        format!("{:.1e} %", 100.0 * x)
-    }
 }
 
 // ---------------------------------------------------------------------------------------

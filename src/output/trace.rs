@@ -1,12 +1,17 @@
 //! The time history of one sample (MODEL.md section 9): one row per step, or per
 //! `every` steps, as an Arrow IPC file written batch by batch.
+//!
+//! A scenario with a control loop adds its columns after the legs' (`control_columns`):
+//! every thruster's thrust and commanded on-time, the thrust on the lander, the loop's
+//! phase, and what its sensors read beside the true state.
 
 use super::{AtomicFile, ENGINE, IpcWriter, field};
-use crate::reference::{Model, StepReport, Summary};
+use crate::control::ControlModel;
+use crate::reference::{Model, StepReport, Summary, Surface};
 use crate::sampling::Sample;
-use arrow_array::{ArrayRef, Float64Array, RecordBatch};
+use arrow_array::{ArrayRef, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Schema};
-use glam::{DMat3, EulerRot};
+use glam::{DMat3, DQuat, DVec3, EulerRot};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Arc;
@@ -14,9 +19,12 @@ use std::sync::Arc;
 /// Rows per record batch.
 const BATCH_ROWS: usize = 8192;
 
+/// A column: name, unit, description.
+type Column = (String, &'static str, String);
+
 /// Columns of the body, then 7 columns per leg.
-fn columns(legs: usize) -> Vec<(String, &'static str, String)> {
-    let mut c: Vec<(String, &'static str, String)> = [
+fn columns(legs: usize) -> Vec<Column> {
+    let mut c: Vec<Column> = [
         ("t_s", "s", "time at the start of the step"),
         ("dt_s", "s", "length of the step"),
         ("x_m", "m", "CG position, X_I"),
@@ -75,11 +83,169 @@ fn columns(legs: usize) -> Vec<(String, &'static str, String)> {
     c
 }
 
-/// Appends the row of `r` to the columns `data` (`buf` holds it on the way).
-fn push_row(model: &Model, r: &StepReport, buf: &mut Vec<f64>, data: &mut [Vec<f64>]) {
-    row(model, r, buf);
-    for (c, v) in data.iter_mut().zip(buf.iter()) {
-        c.push(*v);
+/// The text column of a control loop's phase.
+pub const PHASE_COLUMN: &str = "control_phase";
+
+/// What a control loop adds to the columns of a lander with `thrusters` thrusters: numbers
+/// that every row has (two per thruster, then the thrust on the lander, the propellant and
+/// the true tilt and altitude the sensors read), then, after the text column of the phase
+/// (`PHASE_COLUMN`), the sensors' reading at the last control instant (null before the
+/// first).
+fn control_columns(thrusters: usize) -> (Vec<Column>, Vec<Column>) {
+    let own = |list: &[(&str, &'static str, &str)]| -> Vec<Column> {
+        list.iter()
+            .map(|(n, u, d)| (n.to_string(), *u, d.to_string()))
+            .collect()
+    };
+    let mut numbers = Vec::new();
+    for j in 0..thrusters {
+        for (n, u, d) in [
+            (
+                "thrust_n",
+                "N",
+                "thrust during the step (as built: magnitude error included; 0 when off)",
+            ),
+            (
+                "command_on_s",
+                "s",
+                "on-time commanded for the current control period",
+            ),
+        ] {
+            numbers.push((format!("thruster{j}_{n}"), u, format!("thruster {j}: {d}")));
+        }
+    }
+    numbers.extend(own(&[
+        ("thrust_b_x_n", "N", "thrust force on the lander, X_B"),
+        ("thrust_b_y_n", "N", "thrust force on the lander, Y_B"),
+        ("thrust_b_z_n", "N", "thrust force on the lander, Z_B"),
+        (
+            "thrust_moment_b_x_n_m",
+            "N m",
+            "thrust moment about the CG, X_B",
+        ),
+        (
+            "thrust_moment_b_y_n_m",
+            "N m",
+            "thrust moment about the CG, Y_B",
+        ),
+        (
+            "thrust_moment_b_z_n_m",
+            "N m",
+            "thrust moment about the CG, Z_B",
+        ),
+        (
+            "thrust_total_n",
+            "N",
+            "sum of the firing thrusters' thrust magnitudes (what burns propellant)",
+        ),
+        (
+            "propellant_used_kg",
+            "kg",
+            "propellant used before the start of the step: thrust integral over Isp g0",
+        ),
+        (
+            "altitude_m",
+            "m",
+            "true CG height above the surface plane along its normal (what the altimeter reads)",
+        ),
+        ("tilt_deg", "deg", "true angle between Z_B and Z_I (up)"),
+    ]));
+    let sensed = own(&[
+        (
+            "sensed_t_s",
+            "s",
+            "time of the last control instant, whose sensor reading the sensed_ columns hold \
+             (null before the first)",
+        ),
+        (
+            "sensed_roll_deg",
+            "deg",
+            "sensed Euler roll (noise and bias included), as roll_deg",
+        ),
+        (
+            "sensed_pitch_deg",
+            "deg",
+            "sensed Euler pitch, as pitch_deg",
+        ),
+        ("sensed_yaw_deg", "deg", "sensed Euler yaw, as yaw_deg"),
+        (
+            "sensed_tilt_deg",
+            "deg",
+            "sensed angle between Z_B and Z_I, as tilt_deg",
+        ),
+        ("sensed_rate_x_deg_s", "deg/s", "sensed body rate about X_B"),
+        ("sensed_rate_y_deg_s", "deg/s", "sensed body rate about Y_B"),
+        ("sensed_rate_z_deg_s", "deg/s", "sensed body rate about Z_B"),
+        ("sensed_vx_m_s", "m/s", "sensed CG velocity, X_I"),
+        ("sensed_vy_m_s", "m/s", "sensed CG velocity, Y_I"),
+        ("sensed_vz_m_s", "m/s", "sensed CG velocity, Z_I"),
+        (
+            "sensed_altitude_m",
+            "m",
+            "sensed CG height above the surface plane, as altitude_m",
+        ),
+    ]);
+    (numbers, sensed)
+}
+
+/// The columns of one trace being filled, a batch at a time, in the order of the schema:
+/// the numbers of every row, then (with a control loop) the phase and the sensed values.
+struct Rows {
+    numbers: Vec<Vec<f64>>,
+    phase: Vec<&'static str>,
+    sensed: Vec<Vec<Option<f64>>>,
+    /// A row's numbers and sensed values on their way.
+    buf: Vec<f64>,
+    sensed_buf: Vec<Option<f64>>,
+}
+
+impl Rows {
+    fn new(numbers: usize, sensed: usize) -> Rows {
+        Rows {
+            numbers: vec![Vec::with_capacity(BATCH_ROWS); numbers],
+            phase: Vec::new(),
+            sensed: vec![Vec::new(); sensed],
+            buf: Vec::with_capacity(numbers),
+            sensed_buf: Vec::with_capacity(sensed),
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.numbers[0].len()
+    }
+
+    /// Appends the row of `r`; `loop_` is the control loop's part, and the propellant used
+    /// before the step.
+    fn push(&mut self, model: &Model, r: &StepReport, loop_: Option<(&Looped, f64)>) {
+        row(model, r, &mut self.buf);
+        if let Some((l, propellant_kg)) = loop_ {
+            let phase = l.row(r, propellant_kg, &mut self.buf, &mut self.sensed_buf);
+            self.phase.push(phase);
+            for (c, v) in self.sensed.iter_mut().zip(&self.sensed_buf) {
+                c.push(*v);
+            }
+        }
+        for (c, v) in self.numbers.iter_mut().zip(&self.buf) {
+            c.push(*v);
+        }
+    }
+
+    /// The rows so far as a batch of `schema`; empties the columns.
+    fn take(&mut self, schema: &Arc<Schema>, control: bool) -> anyhow::Result<RecordBatch> {
+        let mut arrays: Vec<ArrayRef> = self
+            .numbers
+            .iter_mut()
+            .map(|c| Arc::new(Float64Array::from(std::mem::take(c))) as ArrayRef)
+            .collect();
+        if control {
+            arrays.push(Arc::new(StringArray::from(std::mem::take(&mut self.phase))));
+            arrays.extend(
+                self.sensed
+                    .iter_mut()
+                    .map(|c| Arc::new(Float64Array::from(std::mem::take(c))) as ArrayRef),
+            );
+        }
+        Ok(RecordBatch::try_new(schema.clone(), arrays)?)
     }
 }
 
@@ -128,6 +294,82 @@ fn row(model: &Model, r: &StepReport, out: &mut Vec<f64>) {
     }
 }
 
+/// The angle between Z_B and Z_I of `attitude`, deg.
+fn tilt_deg(attitude: DQuat) -> f64 {
+    let z = attitude * DVec3::Z;
+    libm::atan2(z.x.hypot(z.y), z.z).to_degrees()
+}
+
+/// What the control loop's columns of a row need: the loop, and the surface normal its
+/// altimeter measures along.
+struct Looped<'a> {
+    control: &'a ControlModel,
+    normal: DVec3,
+}
+
+impl Looped<'_> {
+    /// Appends the control loop's numbers of the row of `r` to `numbers`, writes its sensed
+    /// values to `sensed`; returns its phase.
+    fn row(
+        &self,
+        r: &StepReport,
+        propellant_kg: f64,
+        numbers: &mut Vec<f64>,
+        sensed: &mut Vec<Option<f64>>,
+    ) -> &'static str {
+        let c = r.control.as_ref();
+        for j in 0..self.control.thrusters.len() {
+            let at = |v: Option<&Vec<f64>>| v.and_then(|v| v.get(j)).copied().unwrap_or(0.0);
+            numbers.push(at(c.map(|c| &c.thrust_n)));
+            numbers.push(at(c.map(|c| &c.commanded_on_s)));
+        }
+        let (f, m) = (r.thrust.force_b_n, r.thrust.moment_b_n_m);
+        let b = &r.body;
+        numbers.extend_from_slice(&[
+            f.x,
+            f.y,
+            f.z,
+            m.x,
+            m.y,
+            m.z,
+            r.thrust.flow_n,
+            propellant_kg,
+            self.normal.dot(b.position_m),
+            tilt_deg(b.attitude),
+        ]);
+        sensed.clear();
+        match c.and_then(|c| c.sensed) {
+            Some(s) => {
+                let (yaw, pitch, roll) = s.attitude.to_euler(EulerRot::ZYX);
+                let rate = s.rate_rad_s * (1.0f64).to_degrees();
+                let v = s.velocity_m_s;
+                sensed.extend(
+                    [
+                        s.t_s,
+                        roll.to_degrees(),
+                        pitch.to_degrees(),
+                        yaw.to_degrees(),
+                        tilt_deg(s.attitude),
+                        rate.x,
+                        rate.y,
+                        rate.z,
+                        v.x,
+                        v.y,
+                        v.z,
+                        s.altitude_m,
+                    ]
+                    .map(Some),
+                );
+            }
+            None => sensed.resize(SENSED_COLUMNS, None),
+        }
+        c.map_or("", |c| c.phase)
+    }
+}
+
+/// The number of sensed columns (`control_columns`).
+const SENSED_COLUMNS: usize = 12;
+
 /// Provenance and results stored in the schema metadata of a trace.
 pub struct TraceInfo<'a> {
     pub scenario_toml: &'a str,
@@ -140,11 +382,36 @@ pub struct TraceInfo<'a> {
 /// state at the start of each, and last the state at the decision. Returns the number of
 /// rows written.
 pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> anyhow::Result<u64> {
-    let cols = columns(model.legs.len());
-    let fields: Vec<_> = cols
+    let mut fields: Vec<_> = columns(model.legs.len())
         .iter()
         .map(|(n, u, d)| field(n, DataType::Float64, u, d))
         .collect();
+    let looped = model.control.as_ref().map(|control| Looped {
+        control,
+        normal: Surface::of(info.sample).normal,
+    });
+    let (mut numbers, mut sensed) = (fields.len(), 0);
+    if let Some(l) = &looped {
+        let (more, read) = control_columns(l.control.thrusters.len());
+        debug_assert_eq!(read.len(), SENSED_COLUMNS);
+        numbers += more.len();
+        sensed = read.len();
+        fields.extend(
+            more.iter()
+                .map(|(n, u, d)| field(n, DataType::Float64, u, d)),
+        );
+        fields.push(field(
+            PHASE_COLUMN,
+            DataType::Utf8,
+            "1",
+            "phase of the control loop during the step: fall, hold_down, user (a law of \
+             the user's own) or done",
+        ));
+        fields.extend(
+            read.iter()
+                .map(|(n, u, d)| field(n, DataType::Float64, u, d).with_nullable(true)),
+        );
+    }
     let s = info.summary;
     let mut meta = BTreeMap::from([
         ("touchdown.engine".to_string(), ENGINE.to_string()),
@@ -179,42 +446,44 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
 
     let (file, out) = AtomicFile::create(path)?;
     let mut writer = IpcWriter::new(&file, out, &schema)?;
-    let mut data: Vec<Vec<f64>> = vec![Vec::with_capacity(BATCH_ROWS); cols.len()];
-    let mut buf = Vec::with_capacity(cols.len());
+    let mut data = Rows::new(numbers, sensed);
+    let control = looped.is_some();
     let mut rows = 0u64;
     let mut index = 0u64;
-    let mut failure: Option<anyhow::Error> = None;
-    let flush = |data: &mut Vec<Vec<f64>>, writer: &mut IpcWriter| -> anyhow::Result<()> {
-        let arrays: Vec<ArrayRef> = data
-            .iter_mut()
-            .map(|c| Arc::new(Float64Array::from(std::mem::take(c))) as ArrayRef)
-            .collect();
-        writer.write(&RecordBatch::try_new(schema.clone(), arrays)?)?;
-        Ok(())
+    // Thrust integral so far, N s.
+    let mut impulse_n_s = 0.0;
+    let propellant = |impulse_n_s: f64| {
+        looped
+            .as_ref()
+            .map(|l| (l, impulse_n_s / l.control.exhaust_speed_m_s))
     };
+    let mut failure: Option<anyhow::Error> = None;
     let (_, end) = crate::reference::run::run_to_end(model, info.sample, |report| {
         if failure.is_some() {
             return;
         }
         if index.is_multiple_of(every) {
-            push_row(model, report, &mut buf, &mut data);
+            data.push(model, report, propellant(impulse_n_s));
             rows += 1;
-            if data[0].len() >= BATCH_ROWS
-                && let Err(e) = flush(&mut data, &mut writer)
+            if data.len() >= BATCH_ROWS
+                && let Err(e) = data
+                    .take(&schema, control)
+                    .and_then(|b| Ok(writer.write(&b)?))
             {
                 failure = Some(e);
             }
         }
+        impulse_n_s += report.thrust.flow_n * report.dt_s;
         index += 1;
     });
     if let Some(e) = failure {
         return Err(e);
     }
     // The last row is the state at the decision, whatever `every`.
-    push_row(model, &end, &mut buf, &mut data);
+    data.push(model, &end, propellant(impulse_n_s));
     rows += 1;
-    if !data[0].is_empty() {
-        flush(&mut data, &mut writer)?;
+    if data.len() > 0 {
+        writer.write(&data.take(&schema, control)?)?;
     }
     file.commit(writer.finish()?)?;
     Ok(rows)

@@ -92,18 +92,20 @@ fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
     anyhow!("cannot draw the picture: {e}")
 }
 
-/// Columns of a touchdown file, as `f64`, with the schema metadata and the outcome
-/// column (as indices into `Outcome::ALL`) when the file has one.
+/// Columns of a touchdown file, as `f64` (nulls as NaN), with the schema metadata, the
+/// outcome column (as indices into `Outcome::ALL`) when the file has one, and the other
+/// text columns (a trace's control phase).
 struct Table {
     meta: HashMap<String, String>,
     columns: HashMap<String, Vec<f64>>,
     outcome: Vec<u8>,
+    texts: HashMap<String, Vec<String>>,
     rows: usize,
 }
 
 impl Table {
-    /// Reads the numeric columns `wanted` keeps (and the outcome column) of the file at
-    /// `path`; also returns the file's kind (`sweep` or `trace`).
+    /// Reads the numeric and text columns `wanted` keeps (and the outcome column) of the
+    /// file at `path`.
     fn read(path: &Path, wanted: impl Fn(&str) -> bool) -> anyhow::Result<Table> {
         let format = format_of(path)?;
         let (schema, batches) = open(path, format)?;
@@ -114,6 +116,7 @@ impl Table {
             .collect();
         let mut columns: HashMap<String, Vec<f64>> = HashMap::new();
         let mut outcome = Vec::new();
+        let mut texts: HashMap<String, Vec<String>> = HashMap::new();
         let mut rows = 0;
         for b in batches {
             let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
@@ -135,6 +138,13 @@ impl Table {
                 if !wanted(name) {
                     continue;
                 }
+                if let Some(s) = array.as_string_opt::<i32>() {
+                    texts
+                        .entry(name.clone())
+                        .or_default()
+                        .extend(s.iter().map(|v| v.unwrap_or("").to_string()));
+                    continue;
+                }
                 let values: Vec<f64> = match array.data_type() {
                     DataType::Float64 => array
                         .as_primitive::<Float64Type>()
@@ -150,6 +160,7 @@ impl Table {
             meta,
             columns,
             outcome,
+            texts,
             rows,
         })
     }

@@ -1,8 +1,11 @@
 //! Pictures of a trace file: CG position, velocity, acceleration and attitude; per leg
 //! penetration, normal force, friction force and stroke; the 3D path of the CG and the
-//! footpads over the slope; the acceleration along Z_B (the instruments' shock).
+//! footpads over the slope; the acceleration along Z_B (the instruments' shock). A trace of
+//! a scenario with a control loop adds the thrust (on the lander, each thruster's firings,
+//! the propellant used) and what the sensors read against the true state.
 
 use super::{Area, FONT, Line, SERIES_COLOURS, Table, drawing, line_panel, save_png, span};
+use crate::output::trace::PHASE_COLUMN;
 use anyhow::anyhow;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -15,6 +18,8 @@ struct Trace {
     t: Table,
     time: Vec<f64>,
     legs: usize,
+    /// Thrusters of the control loop (0 without one).
+    thrusters: usize,
     /// Unit normal of the slope plane, in I.
     normal: [f64; 3],
     /// "sample N: OUTCOME at T s", for the captions.
@@ -29,6 +34,9 @@ impl Trace {
         }
         let time = t.column("t_s", path)?.to_vec();
         let legs = t.legs("normal_force_n");
+        let thrusters = (0..)
+            .take_while(|j| t.columns.contains_key(&format!("thruster{j}_thrust_n")))
+            .count();
         let input = |name: &str| -> anyhow::Result<f64> {
             t.meta
                 .get(&format!("touchdown.input.{name}"))
@@ -52,6 +60,7 @@ impl Trace {
         Ok(Trace {
             time,
             legs,
+            thrusters,
             normal: [sa * cb, sa * sb, ca],
             about,
             t,
@@ -116,6 +125,73 @@ impl Trace {
 
     fn time_range(&self) -> std::ops::Range<f64> {
         span(self.time.iter().copied(), 0.0)
+    }
+
+    /// Column `name`, or an error naming it.
+    fn column(&self, name: &str) -> anyhow::Result<&[f64]> {
+        self.t
+            .columns
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| anyhow!("the trace has no column {name}"))
+    }
+
+    /// `values` against time as a staircase: each row's value holds until the next row (a
+    /// thrust is constant over a step); null rows (NaN) left out.
+    fn held(&self, label: &str, k: usize, values: &[f64]) -> Line {
+        let mut points = Vec::with_capacity(2 * values.len());
+        for (i, (&t, &v)) in self.time.iter().zip(values).enumerate() {
+            if !v.is_finite() {
+                continue;
+            }
+            points.push((t, v));
+            if let Some(&next) = self.time.get(i + 1) {
+                points.push((next, v));
+            }
+        }
+        Line {
+            label: label.to_string(),
+            colour: SERIES_COLOURS[k % SERIES_COLOURS.len()],
+            points,
+        }
+    }
+
+    /// Column `name` against time as a staircase (`held`), scaled by `scale`.
+    fn held_column(&self, name: &str, label: &str, k: usize, scale: f64) -> anyhow::Result<Line> {
+        let v: Vec<f64> = self.column(name)?.iter().map(|v| v * scale).collect();
+        Ok(self.held(label, k, &v))
+    }
+
+    /// The control loop's phases and the times they start, in order.
+    fn phases(&self) -> Vec<(f64, &str)> {
+        let Some(phase) = self.t.texts.get(PHASE_COLUMN) else {
+            return Vec::new();
+        };
+        let mut out: Vec<(f64, &str)> = Vec::new();
+        for (t, p) in self.time.iter().zip(phase) {
+            if out.last().is_none_or(|last| last.1 != p) {
+                out.push((*t, p));
+            }
+        }
+        out
+    }
+
+    /// The intervals in which thruster `j` fires: from a row with thrust to the next row
+    /// without, joined where they touch.
+    fn firings(&self, j: usize) -> anyhow::Result<Vec<(f64, f64)>> {
+        let thrust = self.column(&format!("thruster{j}_thrust_n"))?;
+        let mut out: Vec<(f64, f64)> = Vec::new();
+        for (i, (&t, &f)) in self.time.iter().zip(thrust).enumerate() {
+            if f <= 0.0 {
+                continue;
+            }
+            let end = self.time.get(i + 1).copied().unwrap_or(t);
+            match out.last_mut() {
+                Some(last) if last.1 >= t => last.1 = end,
+                _ => out.push((t, end)),
+            }
+        }
+        Ok(out)
     }
 }
 
@@ -283,7 +359,236 @@ pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
         )
     })?;
     written.push(shock);
+
+    if tr.thrusters > 0 {
+        let thrust = name("thrust");
+        save_png(&thrust, (1100, 1300), |root| thrust_picture(root, &tr))?;
+        written.push(thrust);
+        if tr.t.columns.contains_key("sensed_tilt_deg") {
+            let sensors = name("sensors");
+            save_png(&sensors, (1100, 1300), |root| sensors_picture(root, &tr))?;
+            written.push(sensors);
+        }
+    }
     Ok(written)
+}
+
+/// The thrust of a control loop: on the lander (hold-down along -Z_B, across it, and the
+/// sum of the thrusters' magnitudes) with the loop's phases, its moment about the CG, when
+/// each thruster fires, and the propellant used.
+fn thrust_picture(root: &Area<'_>, tr: &Trace) -> anyhow::Result<()> {
+    let root = root
+        .titled(&format!("Thrust, {}", tr.about), (FONT, 22))
+        .map_err(drawing)?;
+    let p = root.split_evenly((4, 1));
+    let range = tr.time_range();
+    let (x, y, z) = (
+        tr.column("thrust_b_x_n")?,
+        tr.column("thrust_b_y_n")?,
+        tr.column("thrust_b_z_n")?,
+    );
+    let down: Vec<f64> = z.iter().map(|v| -v).collect();
+    let across: Vec<f64> = x.iter().zip(y).map(|(x, y)| x.hypot(*y)).collect();
+    let phases: Vec<String> = tr
+        .phases()
+        .iter()
+        .map(|(t, p)| format!("{p} from {t:.2} s"))
+        .collect();
+    let caption = if phases.is_empty() {
+        "thrust on the lander".to_string()
+    } else {
+        format!(
+            "thrust on the lander; control phases: {}",
+            phases.join(", ")
+        )
+    };
+    line_panel(
+        &p[0],
+        &caption,
+        (TIME, "force (N)"),
+        range.clone(),
+        &[
+            tr.held("hold-down: along -Z_B", 0, &down),
+            tr.held("across Z_B", 1, &across),
+            tr.held_column(
+                "thrust_total_n",
+                "sum of the firing thrusters' thrusts",
+                2,
+                1.0,
+            )?,
+        ],
+    )?;
+    let moment = ["x", "y", "z"]
+        .iter()
+        .enumerate()
+        .map(|(k, axis)| {
+            tr.held_column(
+                &format!("thrust_moment_b_{axis}_n_m"),
+                &format!("about {}_B", axis.to_uppercase()),
+                k,
+                1.0,
+            )
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    line_panel(
+        &p[1],
+        "thrust moment about the CG",
+        (TIME, "moment (N m)"),
+        range.clone(),
+        &moment,
+    )?;
+    firing_panel(&p[2], tr, range.clone())?;
+    line_panel(
+        &p[3],
+        "propellant used",
+        (TIME, "propellant (g)"),
+        range,
+        &[tr.line("propellant_used_kg", "propellant used", 0, 1e3)?],
+    )
+}
+
+/// When each thruster fires: a bar per firing on the thruster's row, thruster 0 on top;
+/// each row is labelled with the thruster's thrust as built.
+fn firing_panel(area: &Area<'_>, tr: &Trace, range: std::ops::Range<f64>) -> anyhow::Result<()> {
+    let n = tr.thrusters;
+    let top = 0.5;
+    let bottom = 0.5 - n as f64;
+    let mut chart = ChartBuilder::on(area)
+        .caption("firings: when each thruster is on", (FONT, 18))
+        .margin(8)
+        .x_label_area_size(38)
+        .y_label_area_size(78)
+        .build_cartesian_2d(range.clone(), bottom..top)
+        .map_err(drawing)?;
+    // Row j at y = -j: a tick label per whole value, none between.
+    let label = |v: &f64| {
+        let j = -v.round();
+        if (v + j).abs() < 1e-6 && j >= 0.0 && j < n as f64 {
+            format!("{j:.0}")
+        } else {
+            String::new()
+        }
+    };
+    chart
+        .configure_mesh()
+        .x_desc(TIME)
+        .y_desc("thruster")
+        .y_labels(n + 1)
+        .y_label_formatter(&label)
+        .label_style((FONT, 13))
+        .axis_desc_style((FONT, 15))
+        .light_line_style(RGBColor(238, 238, 238))
+        .draw()
+        .map_err(drawing)?;
+    let width = range.end - range.start;
+    for j in 0..n {
+        let colour = SERIES_COLOURS[j % SERIES_COLOURS.len()];
+        let y = -(j as f64);
+        let thrust = tr
+            .column(&format!("thruster{j}_thrust_n"))?
+            .iter()
+            .copied()
+            .fold(0.0, f64::max);
+        // A firing shorter than a pixel still shows: at least 1/2000 of the time axis.
+        chart
+            .draw_series(tr.firings(j)?.into_iter().map(|(a, b)| {
+                Rectangle::new(
+                    [(a, y - 0.3), (b.max(a + width / 2000.0), y + 0.3)],
+                    colour.filled(),
+                )
+            }))
+            .map_err(drawing)?;
+        if thrust > 0.0 {
+            chart
+                .draw_series([Text::new(
+                    format!("{thrust:.2} N"),
+                    (range.end - 0.07 * width, y + 0.45),
+                    (FONT, 11),
+                )])
+                .map_err(drawing)?;
+        }
+    }
+    Ok(())
+}
+
+/// What the control loop's sensors read at its control instants (held until the next)
+/// against the true state: tilt, body rates, CG velocity and altitude.
+fn sensors_picture(root: &Area<'_>, tr: &Trace) -> anyhow::Result<()> {
+    let root = root
+        .titled(
+            &format!(
+                "Sensed (held from each control instant) and true, {}",
+                tr.about
+            ),
+            (FONT, 22),
+        )
+        .map_err(drawing)?;
+    let p = root.split_evenly((4, 1));
+    let range = tr.time_range();
+    let pair = |truth: &str, sensed: &str, label: &str, k: usize| -> anyhow::Result<[Line; 2]> {
+        Ok([
+            tr.line(truth, &format!("{label}, true"), k, 1.0)?,
+            tr.held_column(sensed, &format!("{label}, sensed"), k + 4, 1.0)?,
+        ])
+    };
+    line_panel(
+        &p[0],
+        "tilt: angle between Z_B and Z_I (up)",
+        (TIME, "tilt (deg)"),
+        range.clone(),
+        &pair("tilt_deg", "sensed_tilt_deg", "tilt", 0)?,
+    )?;
+    let rates: Vec<Line> = ["x", "y", "z"]
+        .iter()
+        .enumerate()
+        .map(|(k, a)| {
+            pair(
+                &format!("rate_{a}_deg_s"),
+                &format!("sensed_rate_{a}_deg_s"),
+                &format!("about {}_B", a.to_uppercase()),
+                k,
+            )
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?
+        .into_iter()
+        .flatten()
+        .collect();
+    line_panel(
+        &p[1],
+        "body rates",
+        (TIME, "rate (deg/s)"),
+        range.clone(),
+        &rates,
+    )?;
+    let velocity: Vec<Line> = ["x", "y", "z"]
+        .iter()
+        .enumerate()
+        .map(|(k, a)| {
+            pair(
+                &format!("v{a}_m_s"),
+                &format!("sensed_v{a}_m_s"),
+                &format!("along {}_I", a.to_uppercase()),
+                k,
+            )
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?
+        .into_iter()
+        .flatten()
+        .collect();
+    line_panel(
+        &p[2],
+        "CG velocity",
+        (TIME, "velocity (m/s)"),
+        range.clone(),
+        &velocity,
+    )?;
+    line_panel(
+        &p[3],
+        "CG altitude above the surface plane",
+        (TIME, "altitude (m)"),
+        range,
+        &pair("altitude_m", "sensed_altitude_m", "altitude", 0)?,
+    )
 }
 
 /// Colours of the axis names X_I, Y_I, Z_I of the 3D path (red, green, blue as in most 3D

@@ -100,7 +100,7 @@ pub fn run_to_end(
     let mut control = model
         .control
         .as_ref()
-        .map(|m| (m, LaneControl::new(m, sample.seed)));
+        .map(|m| (m, LaneControl::new(m, sample)));
     if let Some((m, c)) = &mut control {
         state.thrust = c.event(m, &truth_of(&state, &surface, false));
     }

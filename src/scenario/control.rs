@@ -18,6 +18,10 @@ pub struct Control {
     pub sensors: Sensors,
     pub hold_down: Option<HoldDown>,
     pub attitude_hold: Option<AttitudeHold>,
+    /// A law of the user's own, by the name its program registered it under
+    /// (`control::register_law`): it commands in every phase, in place of the built-in
+    /// laws.
+    pub law: Option<String>,
 }
 
 /// Sensor errors: the white noise of each reading (a new draw at every control instant)
@@ -80,6 +84,25 @@ impl Default for Sensors {
             altitude_noise_m: 0.0,
             altitude_bias_m: 0.0,
         }
+    }
+}
+
+/// The law parameters a sample may draw, in the order they join the inputs' grid (after
+/// the inputs, the last varying fastest) and of `Control::parameters`.
+pub const LAW_PARAMETERS: usize = 4;
+
+impl Control {
+    /// The distributions of the law parameters (`LAW_PARAMETERS`): hold-down thrust and
+    /// duration, attitude-hold `kp` and `kd`; `None` where the scenario has no such law.
+    #[must_use]
+    pub fn parameters(&self) -> [Option<Dist>; LAW_PARAMETERS] {
+        let (h, a) = (self.hold_down.as_ref(), self.attitude_hold.as_ref());
+        [
+            h.map(|h| h.thrust_n),
+            h.map(|h| h.duration_s),
+            a.map(|a| a.kp_n_m_per_rad),
+            a.map(|a| a.kd_n_m_s_per_rad),
+        ]
     }
 }
 
@@ -162,6 +185,17 @@ pub(super) fn read_control(top: &mut Reader) -> Result<Option<Control>, Scenario
             Some(out)
         }
     };
+    let law = match r.take("law") {
+        None => None,
+        Some(toml::Value::String(s)) if !s.is_empty() => Some(s),
+        Some(v) => {
+            return Err(r.error(
+                "law",
+                &v,
+                "the name (a string) of a law the program running the sweep registered",
+            ));
+        }
+    };
     r.finish()?;
     Ok(Some(Control {
         rate_hz,
@@ -169,5 +203,6 @@ pub(super) fn read_control(top: &mut Reader) -> Result<Option<Control>, Scenario
         sensors,
         hold_down,
         attitude_hold,
+        law,
     }))
 }

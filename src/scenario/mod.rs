@@ -16,7 +16,7 @@ mod simulation;
 mod surface;
 mod thrusters;
 
-pub use control::{AttitudeHold, Control, HoldDown, Sensors, Target};
+pub use control::{AttitudeHold, Control, HoldDown, LAW_PARAMETERS, Sensors, Target};
 pub use damper::{Damper, Stage, StrutAxes};
 pub use initial::{AttitudeReference, Initial, Start};
 pub use inputs::{Dist, INPUT_FIELDS, Inputs};

@@ -1,0 +1,146 @@
+//! A control law of the user's own (`control::Law`): the example program
+//! `examples/user_law.rs` runs `touchdown sweep` on a scenario that names its law, the
+//! `touchdown` binary alone refuses that scenario naming the law, and the law (the
+//! example's own code, included here) gives the same outcomes in the kernels and in the
+//! scalar reference.
+
+use crate::common::{BIN, TempDir, touchdown};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::AtomicUsize;
+use touchdown::reference::{self, Model};
+use touchdown::sampling;
+use touchdown::scenario::Scenario;
+use touchdown::sweep;
+
+/// The example's law, `DampThenHold` (its `main` unused here).
+#[allow(dead_code)]
+mod example {
+    include!("../examples/user_law.rs");
+}
+
+fn scenario_text() -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/user-law.toml"))
+        .unwrap()
+}
+
+/// The example program, built beside the `touchdown` binary (cargo builds the examples
+/// of a package for its tests).
+fn example_binary() -> PathBuf {
+    let dir = Path::new(BIN).parent().expect("the binary's directory");
+    dir.join("examples")
+        .join(format!("user_law{}", std::env::consts::EXE_SUFFIX))
+}
+
+#[test]
+fn the_touchdown_binary_refuses_a_law_it_does_not_have() {
+    let dir = TempDir::new("user_law_refused");
+    let scenario = dir.write("scenario.toml", &scenario_text());
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--scenario",
+            scenario.to_str().unwrap(),
+            "--samples",
+            "10",
+        ],
+    );
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(
+        run.stderr.contains("control.law") && run.stderr.contains("damp_then_hold"),
+        "{run}"
+    );
+    assert!(
+        dir.entries() == ["scenario.toml"],
+        "no output file: {:?}",
+        dir.entries()
+    );
+}
+
+#[test]
+fn the_example_program_sweeps_with_its_law() {
+    let dir = TempDir::new("user_law_example");
+    let scenario = dir.write("scenario.toml", &scenario_text());
+    let out = dir.join("sweep.arrow");
+    let status = Command::new(example_binary())
+        .args([
+            "sweep",
+            "--scenario",
+            scenario.to_str().unwrap(),
+            "--samples",
+            "64",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .expect("run the example program (cargo test builds it)");
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    let text = touchdown(dir.path(), &["report", out.to_str().unwrap()]);
+    assert_eq!(text.code, Some(0), "{text}");
+}
+
+/// The example's law registered in this process: every sample of a sweep through the f64
+/// kernels ends as the reference ends it. (The law only reads the sensors and a time, and
+/// f64 kernels round as the reference does up to the order of sums: the measured
+/// disagreement is none. A sample whose sensed contact or quantised command flips by a
+/// rounding would show as a disagreement; the bound allows one in 200.)
+#[test]
+fn the_law_gives_the_same_outcomes_in_the_kernels_and_the_reference() {
+    touchdown::control::register_law("damp_then_hold", example::DampThenHold);
+    let scenario = Scenario::from_toml(&scenario_text()).unwrap();
+    let model = Model::new(&scenario);
+    let n = 200;
+    let mut rows = Vec::new();
+    let never = AtomicUsize::new(0);
+    sweep::run_until(
+        &scenario,
+        &model,
+        kernels::isa::Isa::detect(),
+        0..n,
+        64,
+        &never,
+        |r| {
+            rows.extend(r);
+            Ok(())
+        },
+    )
+    .unwrap();
+    let mut disagree = 0;
+    let mut pushed = 0;
+    for row in &rows {
+        let r = reference::run(
+            &model,
+            &sampling::sample(&scenario, row.sample.index),
+            |_| {},
+        );
+        let (rc, kc) = (r.control.unwrap(), row.summary.control.unwrap());
+        if r.outcome != row.summary.outcome {
+            disagree += 1;
+            continue;
+        }
+        // The hold-down of the user's law is not the built-in hold_down's.
+        assert_eq!(kc.hold_down_impulse_n_s, 0.0);
+        assert!(
+            (rc.propellant_kg - kc.propellant_kg).abs() <= 1e-6 + 0.01 * rc.propellant_kg,
+            "sample {}: propellant {} against {}",
+            row.sample.index,
+            rc.propellant_kg,
+            kc.propellant_kg
+        );
+        // 15 N for 8 s at Isp 220 s: 0.056 kg, besides the attitude firings.
+        if kc.propellant_kg > 0.05 {
+            pushed += 1;
+        }
+    }
+    println!("{n} samples: {disagree} outcome disagreements, {pushed} pushed for 8 s");
+    assert!(disagree * 200 <= n, "{disagree} of {n} disagree");
+    assert!(
+        pushed * 2 > n,
+        "the law's hold-down ran in only {pushed} of {n}"
+    );
+}
