@@ -1,12 +1,12 @@
 //! `touchdown report`: what a sweep file says, for people. Outcome counts with 95 %
 //! confidence intervals, the allowable slope per sector of downhill azimuth relative to the
-//! lander, and the peak loads. Markdown, so that it reads on a terminal and pastes into a
+//! lander, the peak loads, and (with thrusters) the propellant and firings. Markdown, so that it reads on a terminal and pastes into a
 //! design note.
 
 use crate::output::read::open_sweep;
 use crate::reference::Outcome;
 use anyhow::{anyhow, bail};
-use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
+use arrow_array::{Array, Float64Array, RecordBatch, StringArray, UInt32Array};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -220,9 +220,11 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
             values: Vec::new(),
         },
     ];
+    let mut thrust = Thrust::default();
     for b in batches {
         let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
         let f = |name: &str| float_column(&b, name, path);
+        let control = ThrustColumns::of(&b, path)?;
         let outcome = b
             .column_by_name("outcome")
             .and_then(|c| c.as_any().downcast_ref::<StringArray>())
@@ -256,6 +258,9 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
             loads[4]
                 .values
                 .push(energy.iter().map(|c| c.value(i)).sum());
+            if let Some(c) = &control {
+                thrust.push(c, i, o);
+            }
         }
     }
     let total: u64 = counts.iter().sum();
@@ -328,6 +333,7 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
             l.name, l.unit
         );
     }
+    thrust.write(&mut t);
     let dampers_off = meta
         .get("touchdown.scenario")
         .and_then(|text| crate::scenario::Scenario::from_toml(text).ok())
@@ -347,6 +353,99 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
         path.display()
     );
     Ok(t)
+}
+
+/// The columns of what the thrusters did, in a batch of a sweep with a control loop.
+struct ThrustColumns<'a> {
+    propellant_kg: &'a Float64Array,
+    on_time_s: &'a Float64Array,
+    firings: &'a UInt32Array,
+    hold_down_impulse_n_s: &'a Float64Array,
+}
+
+impl<'a> ThrustColumns<'a> {
+    /// The columns of `b`, or `None` in a sweep without a control loop (no `propellant_kg`).
+    fn of(b: &'a RecordBatch, path: &Path) -> anyhow::Result<Option<ThrustColumns<'a>>> {
+        if b.column_by_name("propellant_kg").is_none() {
+            return Ok(None);
+        }
+        let firings = b
+            .column_by_name("firings")
+            .and_then(|c| c.as_any().downcast_ref::<UInt32Array>())
+            .ok_or_else(|| anyhow!("{}: no UInt32 column firings", path.display()))?;
+        Ok(Some(ThrustColumns {
+            propellant_kg: float_column(b, "propellant_kg", path)?,
+            on_time_s: float_column(b, "thrust_on_time_s", path)?,
+            firings,
+            hold_down_impulse_n_s: float_column(b, "hold_down_impulse_n_s", path)?,
+        }))
+    }
+}
+
+/// Propellant and firings over a sweep with a control loop: their distributions, and the
+/// propellant per outcome.
+#[derive(Default)]
+struct Thrust {
+    /// Propellant (kg), thruster on-time (s), firings, hold-down impulse (N s), per sample.
+    values: [Vec<f64>; 4],
+    /// Propellant (kg) summed per outcome, and the samples of each.
+    by_outcome: [(f64, u64); Outcome::ALL.len()],
+}
+
+impl Thrust {
+    fn push(&mut self, c: &ThrustColumns<'_>, i: usize, o: Outcome) {
+        let propellant = c.propellant_kg.value(i);
+        for (v, x) in self.values.iter_mut().zip([
+            propellant,
+            c.on_time_s.value(i),
+            f64::from(c.firings.value(i)),
+            c.hold_down_impulse_n_s.value(i),
+        ]) {
+            v.push(x);
+        }
+        self.by_outcome[o as usize].0 += propellant;
+        self.by_outcome[o as usize].1 += 1;
+    }
+
+    /// The section of the report (nothing for a sweep without a control loop).
+    fn write(&mut self, t: &mut String) {
+        if self.values[0].is_empty() {
+            return;
+        }
+        let total: f64 = self.values[0].iter().sum();
+        let fired = self.values[2].iter().filter(|&&f| f > 0.0).count();
+        let n = self.values[0].len();
+        let _ = writeln!(
+            t,
+            "\n## Propellant and firings\n\n{fired} of {n} samples fired a thruster; {total:.4} kg \
+             of propellant over all samples.\n\n\
+             | quantity | mean | median | 99th percentile | largest |\n|---|---:|---:|---:|---:|"
+        );
+        for (v, (name, unit)) in self.values.iter_mut().zip([
+            ("propellant used", "kg"),
+            ("thruster on-time, all thrusters", "s"),
+            ("firings", "1"),
+            ("hold-down impulse", "N s"),
+        ]) {
+            let mean = v.iter().sum::<f64>() / v.len() as f64;
+            let median = quantile(v, 0.5);
+            let p99 = quantile(v, 0.99);
+            let max = v.last().copied().unwrap_or(0.0);
+            let _ = writeln!(
+                t,
+                "| {name} ({unit}) | {mean:.4} | {median:.4} | {p99:.4} | {max:.4} |"
+            );
+        }
+        let _ = writeln!(
+            t,
+            "\n| outcome | samples | mean propellant (kg) |\n|---|---:|---:|"
+        );
+        for (o, (kg, k)) in Outcome::ALL.iter().zip(&self.by_outcome) {
+            if *k > 0 {
+                let _ = writeln!(t, "| {} | {k} | {:.4} |", o.name(), kg / *k as f64);
+            }
+        }
+    }
 }
 
 /// A Float64 column of a batch, by name.

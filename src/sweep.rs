@@ -429,7 +429,7 @@ impl<K: Kernel> Worker<K> {
                         let mut summary = lane_summary(&self.block, i);
                         if let (Some(m), Some(c)) = (&model.control, &mut self.control[i]) {
                             let left = self.block.thrust.event_in_s.lane(i);
-                            summary.control = Some(c.finish(m, left));
+                            summary.control = Some(Box::new(c.finish(m, left)));
                         }
                         rows.push(Row { sample, summary });
                         self.refill(scenario, model, feed, i);

@@ -238,3 +238,60 @@ fn report_refuses_what_is_not_a_sweep() {
         assert!(!run.stderr.contains("shard"), "{run}");
     }
 }
+
+/// With thrusters, the report gives the propellant and firings; its figures are those of
+/// the file's own columns (recomputed here from them), and a passive sweep's report has no
+/// such section.
+#[test]
+fn report_gives_propellant_statistics_of_a_sweep_with_thrusters() {
+    use arrow_array::{Array, Float64Array, StringArray, UInt32Array};
+    let dir = TempDir::new("report_propellant");
+    let scenario = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hold-down.toml"),
+    )
+    .unwrap();
+    let (_, report) = sweep_and_report(&dir, &scenario, "160", "h.arrow");
+    let file = std::fs::File::open(dir.join("h.arrow")).unwrap();
+    let (mut propellant, mut fired) = (Vec::new(), 0);
+    let mut by_outcome: std::collections::BTreeMap<String, (f64, u64)> = Default::default();
+    for b in arrow_ipc::reader::FileReader::try_new(file, None).unwrap() {
+        let b = b.unwrap();
+        let col = |n: &str| b.column_by_name(n).unwrap().clone();
+        let p = col("propellant_kg");
+        let p = p.as_any().downcast_ref::<Float64Array>().unwrap();
+        let f = col("firings");
+        let f = f.as_any().downcast_ref::<UInt32Array>().unwrap();
+        let o = col("outcome");
+        let o = o.as_any().downcast_ref::<StringArray>().unwrap();
+        for i in 0..b.num_rows() {
+            propellant.push(p.value(i));
+            fired += usize::from(f.value(i) > 0);
+            let e = by_outcome.entry(o.value(i).to_string()).or_default();
+            e.0 += p.value(i);
+            e.1 += 1;
+        }
+    }
+    let total: f64 = propellant.iter().sum();
+    let largest = propellant.iter().copied().fold(0.0, f64::max);
+    assert!(largest > 0.0, "hold-down.toml burns propellant");
+    assert!(
+        report.contains(&format!(
+            "{fired} of 160 samples fired a thruster; {total:.4} kg of propellant"
+        )),
+        "{report}"
+    );
+    let mean = total / 160.0;
+    assert!(
+        report.lines().any(
+            |l| l.starts_with(&format!("| propellant used (kg) | {mean:.4} |"))
+                && l.ends_with(&format!("| {largest:.4} |"))
+        ),
+        "{report}"
+    );
+    for (outcome, (kg, k)) in &by_outcome {
+        let row = format!("| {outcome} | {k} | {:.4} |", kg / *k as f64);
+        assert!(report.contains(&row), "no row {row:?} in\n{report}");
+    }
+    let (_, passive) = sweep_and_report(&dir, "", "40", "p.arrow");
+    assert!(!passive.contains("Propellant"), "{passive}");
+}

@@ -1058,7 +1058,7 @@ fn thrust_propellant_is_the_flow_integral() {
                 on_time += firing as f64 * r.dt_s;
                 steps += 1;
             });
-            let c = summary.control.expect("a control summary");
+            let c = *summary.control.expect("a control summary");
             let case = format!(
                 "isp {isp} sample {index} ({:?} at {:.1} s, {steps} steps, hold-down {:.1} N)",
                 summary.outcome, summary.decided_s, c.hold_down_thrust_n

@@ -118,7 +118,7 @@ fn the_law_gives_the_same_outcomes_in_the_kernels_and_the_reference() {
             &sampling::sample(&scenario, row.sample.index),
             |_| {},
         );
-        let (rc, kc) = (r.control.unwrap(), row.summary.control.unwrap());
+        let (rc, kc) = (r.control.unwrap(), row.summary.control.clone().unwrap());
         if r.outcome != row.summary.outcome {
             disagree += 1;
             continue;

@@ -327,7 +327,7 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
         cols.push(f64s(&|r| r.summary.legs[k].stroke_m));
         cols.push(f64s(&|r| r.summary.legs[k].absorbed_j));
     }
-    let control = |r: &Row| r.summary.control.unwrap_or_default();
+    let control = |r: &Row| r.summary.control.as_deref().copied().unwrap_or_default();
     for field in schema.fields().iter().skip(cols.len()) {
         cols.push(match field.name().as_str() {
             "propellant_kg" => f64s(&|r| control(r).propellant_kg),

@@ -105,8 +105,9 @@ pub struct Summary {
     pub first_contact_s: Option<f64>,
     pub max_penetration_m: f64,
     pub legs: Vec<LegSummary>,
-    /// What the control loop did (scenarios with one).
-    pub control: Option<crate::control::ControlSummary>,
+    /// What the control loop did (scenarios with one; boxed, so that the rows of a passive
+    /// sweep stay small: a window of them is in memory).
+    pub control: Option<Box<crate::control::ControlSummary>>,
 }
 
 /// Collects the summary and decides the outcome, one step at a time.

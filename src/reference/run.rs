@@ -114,7 +114,7 @@ pub fn run_to_end(
         if let Some(outcome) = tracker.observe(model, &surface, &report, &state) {
             let mut summary = tracker.finish(&surface, outcome, &state);
             if let Some((m, c)) = &mut control {
-                summary.control = Some(c.finish(m, state.thrust.event_in_s));
+                summary.control = Some(Box::new(c.finish(m, state.thrust.event_in_s)));
             }
             // One more step of a copy, for what it computed at its start (no step taken
             // from there: length 0, and the strokes of the state itself).
