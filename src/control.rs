@@ -308,6 +308,10 @@ pub struct ControlModel {
     pub thrust_error_sd: f64,
     pub misalignment_sd_rad: f64,
     pub mass_kg: f64,
+    pub gravity_m_s2: f64,
+    /// Depth of the lowest footpad below the CG along `-Z_B`, m: the descent law takes the
+    /// footpads' height as the altimeter's CG altitude less this.
+    pub footpad_depth_m: f64,
     pub inertia_min_kg_m2: f64,
     pub leg_reach_m: f64,
     pub flight_step_max_s: f64,
@@ -319,7 +323,7 @@ pub struct ControlModel {
 impl ControlModel {
     /// The control loop of a validated scenario, if it has one.
     #[must_use]
-    pub fn of(s: &Scenario, leg_reach_m: f64) -> Option<ControlModel> {
+    pub fn of(s: &Scenario, leg_reach_m: f64, footpad_depth_m: f64) -> Option<ControlModel> {
         let config = s.control.clone()?;
         Some(ControlModel {
             law: config.law.as_deref().and_then(registered),
@@ -331,6 +335,8 @@ impl ControlModel {
             thrust_error_sd: s.propulsion.thrust_error_sd,
             misalignment_sd_rad: s.propulsion.misalignment_sd_deg.to_radians(),
             mass_kg: s.lander.mass_kg,
+            gravity_m_s2: s.gravity_m_s2,
+            footpad_depth_m,
             inertia_min_kg_m2: s
                 .lander
                 .inertia_kg_m2
@@ -348,13 +354,34 @@ impl ControlModel {
 
 /// Refuses a control loop that cannot work: one without thrusters or without a law, a
 /// hold-down the thrusters cannot push pure along `-Z_B` (or not as hard as asked), an
-/// attitude hold they cannot turn about `X_B` and `Y_B`.
+/// attitude hold they cannot turn about `X_B` and `Y_B`, a descent they cannot brake, or a
+/// descent start without a descent law (and the other way round).
 pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
     let invalid = |key: &str, value: String, allowed: String| ScenarioError::Invalid {
         key: key.to_string(),
         value,
         allowed,
     };
+    let descent = s.control.as_ref().and_then(|c| c.descent);
+    let descent_start = s.initial.start == crate::scenario::Start::Descent;
+    if descent_start && descent.is_none() {
+        return Err(invalid(
+            "initial.start",
+            "\"descent\"".into(),
+            "\"touchdown\" or \"release\", unless [control.descent] gives the descent and \
+             its law (with [[thrusters]] to brake it)"
+                .into(),
+        ));
+    }
+    if descent.is_some() && !descent_start {
+        return Err(invalid(
+            "control.descent",
+            "a descent law".into(),
+            "initial.start = \"descent\" with it: the law brakes a descent that the sample \
+             starts in"
+                .into(),
+        ));
+    }
     let Some(c) = &s.control else {
         return Ok(());
     };
@@ -366,12 +393,13 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
         ));
     }
     if let Some(name) = &c.law {
-        if c.hold_down.is_some() || c.attitude_hold.is_some() {
+        if c.hold_down.is_some() || c.attitude_hold.is_some() || c.descent.is_some() {
             return Err(invalid(
                 "control.law",
                 format!("{name:?}"),
                 "either a law of your own or the built-in laws ([control.hold_down], \
-                 [control.attitude_hold]), not both: your law commands in every phase"
+                 [control.attitude_hold], [control.descent]), not both: your law commands \
+                 in every phase"
                     .into(),
             ));
         }
@@ -397,16 +425,35 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
                 },
             ));
         }
-    } else if c.hold_down.is_none() && c.attitude_hold.is_none() {
+    } else if c.hold_down.is_none() && c.attitude_hold.is_none() && c.descent.is_none() {
         return Err(invalid(
             "control",
             "no law".into(),
-            "a law for the loop to run: [control.hold_down], [control.attitude_hold] or \
-             law = \"NAME\" (one of your own)"
+            "a law for the loop to run: [control.hold_down], [control.attitude_hold], \
+             [control.descent] or law = \"NAME\" (one of your own)"
                 .into(),
         ));
     }
     let allocation = Allocation::new(&s.thrusters);
+    if let Some(d) = &c.descent {
+        // Braking at `braking_m_s2` against gravity, upright: along +Z_B, pure.
+        let need = s.lander.mass_kg * (s.gravity_m_s2 + d.braking_m_s2);
+        let capacity = allocation.unit[4]
+            .as_ref()
+            .map_or(0.0, |u| 1.0 / u.iter().copied().fold(0.0, f64::max));
+        if capacity < need {
+            return Err(invalid(
+                "control.descent.braking_m_s2",
+                format!("{}", d.braking_m_s2),
+                format!(
+                    "a braking the thrusters can give: against gravity it needs mass_kg \
+                     (gravity_m_s2 + braking_m_s2) = {need:.4} N along +Z_B through the CG, \
+                     and they give at most {capacity:.4} N so (thrusters pushing along +Z_B, \
+                     placed symmetrically about the CG)"
+                ),
+            ));
+        }
+    }
     if let Some(h) = &c.hold_down {
         let most = h.thrust_n.support().1;
         if most > 0.0 {
@@ -483,6 +530,9 @@ pub struct Sensed {
 /// The phase of a lander's control loop.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Phase {
+    /// From a descent start until the descent law releases the lander (or contact is
+    /// sensed first): braking, and attitude hold if any.
+    Descent,
     /// Before contact is sensed: attitude hold, if any.
     Fall,
     /// Hold-down since the instant at `since_s`, at rest (sensed) for `rest_s`.
@@ -521,6 +571,12 @@ pub struct ControlSummary {
     pub hold_down_duration_s: f64,
     pub kp_n_m_per_rad: f64,
     pub kd_n_m_s_per_rad: f64,
+    /// When the descent law released the lander, s, and its true state then: the height
+    /// of its footpads (the true CG altitude above the surface plane less the footpads'
+    /// depth below the CG) and its CG velocity in I (NaN: never released, or no descent).
+    pub release_time_s: f64,
+    pub release_altitude_m: f64,
+    pub release_velocity_m_s: [f64; 3],
 }
 
 /// One lander's control loop: its sampled thruster errors, sensor biases and law
@@ -555,6 +611,8 @@ pub struct LaneControl {
     impulse_n_s: f64,
     /// What the sensors read at the last control instant.
     last_sensed: Option<Sensed>,
+    /// The sample's release height, m: where the descent law releases the lander.
+    release_height_m: f64,
     /// Whether the event under way is a control instant (`begin` to `end`).
     instant_due: bool,
     /// Control instants so far.
@@ -575,7 +633,7 @@ pub struct ControlReport {
     pub commanded_on_s: Vec<f64>,
     /// The thrust of every thruster during the step (as built: errors included), N.
     pub thrust_n: Vec<f64>,
-    /// The phase of the loop: "fall", "hold_down" or "done".
+    /// The phase of the loop: "descent", "fall", "hold_down", "user" or "done".
     pub phase: &'static str,
 }
 
@@ -672,6 +730,8 @@ impl LaneControl {
             altitude_bias_m,
             phase: if m.law.is_some() {
                 Phase::User
+            } else if m.config.descent.is_some() {
+                Phase::Descent
             } else {
                 Phase::Fall
             },
@@ -685,6 +745,7 @@ impl LaneControl {
             powered: true,
             impulse_n_s: 0.0,
             last_sensed: None,
+            release_height_m: sample.inputs.release_height_m,
             instant_due: false,
             instants: 0,
             memory: [0.0; LAW_MEMORY],
@@ -694,6 +755,9 @@ impl LaneControl {
                 hold_down_duration_s,
                 kp_n_m_per_rad,
                 kd_n_m_s_per_rad,
+                release_time_s: nan,
+                release_altitude_m: nan,
+                release_velocity_m_s: [nan; 3],
                 ..ControlSummary::default()
             },
         }
@@ -721,6 +785,7 @@ impl LaneControl {
             }
         }));
         out.phase = match self.phase {
+            Phase::Descent => "descent",
             Phase::Fall => "fall",
             Phase::HoldDown { .. } => "hold_down",
             Phase::User => "user",
@@ -855,7 +920,22 @@ impl LaneControl {
         let c = &m.config;
         let sensed = self.last_sensed.expect("begin read the sensors");
         let t = sensed.t_s;
-        if self.phase == Phase::Fall && sensed.contact {
+        if self.phase == Phase::Descent && !sensed.contact {
+            let d = c.descent.as_ref().expect("a descent phase has its law");
+            let height = sensed.altitude_m - m.footpad_depth_m;
+            let approach = truth.normal.dot(sensed.velocity_m_s);
+            if height <= self.release_height_m && approach.abs() < d.release_speed_m_s {
+                self.phase = Phase::Fall;
+                // The release ends the burn at once: its commands still in the latency
+                // queue are dropped, so the free fall starts from the state recorded here.
+                self.queue.clear();
+                let s = &mut self.summary;
+                s.release_time_s = truth.t_s;
+                s.release_altitude_m = truth.normal.dot(truth.position_m) - m.footpad_depth_m;
+                s.release_velocity_m_s = truth.velocity_m_s.to_array();
+            }
+        }
+        if matches!(self.phase, Phase::Descent | Phase::Fall) && sensed.contact {
             let (thrust, duration) = (
                 self.summary.hold_down_thrust_n,
                 self.summary.hold_down_duration_s,
@@ -894,6 +974,7 @@ impl LaneControl {
                 }
                 (command.wrench, false)
             }
+            Phase::Descent => (self.descent(m, &sensed, truth.normal), false),
             Phase::Fall => (self.attitude_hold(m, &sensed, truth.normal), false),
             Phase::HoldDown { .. } => (
                 Wrench {
@@ -950,6 +1031,28 @@ impl LaneControl {
         }
     }
 
+    /// The descent's wrench: `descent_force`, and `attitude_hold`'s torque if the loop has
+    /// it.
+    fn descent(&self, m: &ControlModel, sensed: &Sensed, normal: DVec3) -> Wrench {
+        let d = m
+            .config
+            .descent
+            .as_ref()
+            .expect("a descent phase has its law");
+        Wrench {
+            force_b_n: descent_force(
+                d,
+                m.mass_kg,
+                m.gravity_m_s2,
+                sensed.altitude_m - m.footpad_depth_m,
+                self.release_height_m,
+                sensed,
+                normal,
+            ),
+            ..self.attitude_hold(m, sensed, normal)
+        }
+    }
+
     /// `attitude_hold`'s wrench, with this sample's gains (`attitude_torque`).
     fn attitude_hold(&self, m: &ControlModel, sensed: &Sensed, normal: DVec3) -> Wrench {
         let Some(a) = &m.config.attitude_hold else {
@@ -971,6 +1074,30 @@ impl LaneControl {
             ),
         }
     }
+}
+
+/// The descent law's force on the lander (`[control.descent]`), in B: its mass times
+/// `gain (h'_ref - h') n + g up`, where `h' = n . v` is the rate of the footpads' height
+/// `height_m` along the surface normal `n` (`v` the sensed velocity) and `h'_ref` the
+/// braking profile's, `-sqrt(2 braking (height - release))` above the release height
+/// `release_height_m` and 0 at or below it; the sensed attitude turns it into B. Only the
+/// approach along the normal is controlled: a velocity along the surface (the navigation
+/// error) changes no height and is left as it is.
+#[must_use]
+pub fn descent_force(
+    d: &crate::scenario::Descent,
+    mass_kg: f64,
+    gravity_m_s2: f64,
+    height_m: f64,
+    release_height_m: f64,
+    sensed: &Sensed,
+    normal: DVec3,
+) -> DVec3 {
+    let above = (height_m - release_height_m).max(0.0);
+    let rate_ref = -(2.0 * d.braking_m_s2 * above).sqrt();
+    let rate = normal.dot(sensed.velocity_m_s);
+    let accel = normal * ((rate_ref - rate) * d.gain_per_s) + DVec3::Z * gravity_m_s2;
+    sensed.attitude.inverse() * (accel * mass_kg)
 }
 
 /// The attitude-hold law (`[control.attitude_hold]`): torque in B, `kp` times the rotation

@@ -274,33 +274,54 @@ fn kernels_agree_with_the_reference() {
             scenario_file("hold-down"),
             400,
         ),
+        (
+            // The final burn: a descent braked by the loop and released into the fall.
+            "descent",
+            scenario_file("descent"),
+            200,
+        ),
     ];
-    let mut totals: Vec<(KernelKind, [u64; 4])> = Vec::new();
+    // Totals per kernel, passive scenarios apart from those with a control loop.
+    let mut totals: Vec<((KernelKind, bool), [u64; 4])> = Vec::new();
     for (name, s, n) in &cases {
+        let controlled = s.control.is_some();
         for (isa, counts) in compare(name, s, *n) {
-            match totals.iter_mut().find(|(i, _)| *i == isa) {
+            match totals.iter_mut().find(|(i, _)| *i == (isa, controlled)) {
                 Some((_, t)) => t.iter_mut().zip(counts).for_each(|(a, b)| *a += b),
-                None => totals.push((isa, counts)),
+                None => totals.push(((isa, controlled), counts)),
             }
         }
     }
-    for (kernel, [total, disagree, unexplained, drifted]) in totals {
-        let isa = kernel.name();
+    for ((kernel, controlled), [total, disagree, unexplained, drifted]) in totals {
+        let isa = format!(
+            "{}{}",
+            kernel.name(),
+            if controlled { ", control loops" } else { "" }
+        );
         println!(
             "kernel {isa}: {total} samples, {disagree} disagreements, {unexplained} unexplained, {drifted} drifted"
         );
         // f64 lanes round as the reference does, up to the order of sums: few samples
-        // drift. f32 lanes round 2^29 times coarser, and a lander's bounces amplify it:
-        // measured 3.6-3.7 % (252-257 of 7000) drift in f32 in the three instruction sets.
-        // A defect of the f32 lanes (a constant rounded to 0, a threshold lost) shifts
-        // results in most samples that meet it, not a few percent.
-        let limit = match kernel.precision {
-            Precision::F64 => 50,
-            Precision::F32 => 20,
+        // drift (none of the 600 with a control loop). f32 lanes round 2^29 times
+        // coarser, and a lander's bounces amplify it: measured 3.6-3.7 % (252-257 of
+        // 7000) drift in f32 in the three instruction sets. A defect of the f32 lanes (a
+        // constant rounded to 0, a threshold lost) shifts results in most samples that
+        // meet it, not a few percent. A control loop in f32 amplifies more: every control
+        // instant quantises on-times to minimum impulse bits, and a rounding that moves a
+        // sensed value across a quantisation step changes a firing by a whole bit, then
+        // the loop works from another state; a descent makes 300 such decisions before
+        // the fall. Measured in f32 with AVX2 and SSE2: 49-52 of the 400 hold-down samples
+        // and 119 of the 200 descent samples drift (28-29 %), with their outcomes agreeing
+        // but for one sample each near a threshold. Bound: 2 in 5, a regression to
+        // drifting everywhere still fails.
+        let (limit, of) = match (kernel.precision, controlled) {
+            (Precision::F64, _) => (1, 50),
+            (Precision::F32, false) => (1, 20),
+            (Precision::F32, true) => (2, 5),
         };
         assert!(
-            drifted * limit <= total,
-            "kernel {isa}: {drifted} of {total} samples drifted: more than 1/{limit}"
+            drifted * of <= limit * total,
+            "kernel {isa}: {drifted} of {total} samples drifted: more than {limit}/{of}"
         );
         assert_eq!(
             unexplained, 0,

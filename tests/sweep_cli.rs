@@ -989,6 +989,38 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
             "clearance_m = 5 m",
         ],
     ),
+    bad_scenario(
+        "a descent start without a descent law",
+        "[initial]\nstart = \"descent\"\n",
+        &["`initial.start` = \"descent\"", "[control.descent]"],
+    ),
+    bad_scenario(
+        "a descent law without a descent start",
+        concat!(
+            "[[thrusters]]\nposition_m = [0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[[thrusters]]\nposition_m = [-0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[control]\n[control.descent]\n",
+        ),
+        &["`control.descent`", "initial.start = \"descent\""],
+    ),
+    bad_scenario(
+        "a descent braking harder than the thrusters can",
+        concat!(
+            "[initial]\nstart = \"descent\"\n",
+            "[[thrusters]]\nposition_m = [0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[[thrusters]]\nposition_m = [-0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[control]\n[control.descent]\nbraking_m_s2 = 0.05\n",
+        ),
+        &[
+            "`control.descent.braking_m_s2` = 0.05",
+            "6.6800 N along +Z_B",
+            "at most 4.0000 N",
+        ],
+    ),
     BadInput {
         name: "bad scenario with an explicit output path and format",
         scenario: Some("[lander]\nmass_kg = 0\n"),

@@ -1081,3 +1081,113 @@ fn thrust_propellant_is_the_flow_integral() {
     }
     table.finish();
 }
+
+// ---------------------------------------------------------------------------------------
+// 6. Descent: the final burn releases the lander into a ballistic fall.
+// ---------------------------------------------------------------------------------------
+
+/// The descent scenario of a perfect loop: four 1 N thrusters pushing along +Z_B and four
+/// 10 N along -Z_B, symmetric about the CG, no thrust or pointing errors, no sensor
+/// errors, no attitude hold; latency `latency` periods at 10 Hz; the descent of
+/// scenarios/descent.toml (15 m at 0.2 m/s, braking 0.01 m/s^2, gain 2/s, release below
+/// 0.01 m/s).
+fn perfect_descent(latency: u32) -> Scenario {
+    let mut text = String::from(
+        "[initial]\nstart = \"descent\"\n[simulation]\nt_max_s = 150.0\n\
+         [propulsion]\nthrust_error_sd = 0.0\nmisalignment_sd_deg = 0.0\n",
+    );
+    for (x, y) in [(0.45, 0.0), (-0.45, 0.0), (0.0, 0.45), (0.0, -0.45)] {
+        for (z, thrust) in [(1.0, 1.0), (-1.0, 10.0)] {
+            text += &format!(
+                "[[thrusters]]\nposition_m = [{x}, {y}, 0.3]\ndirection = [0.0, 0.0, {z}]\n\
+                 max_thrust_n = {thrust}\nmin_on_time_s = 0.01\n"
+            );
+        }
+    }
+    text += &format!(
+        "[control]\nrate_hz = 10.0\nlatency_periods = {latency}\n[control.descent]\n\
+         start_altitude_m = 15.0\nstart_speed_m_s = 0.2\nbraking_m_s2 = 0.01\n\
+         gain_per_s = 2.0\nrelease_speed_m_s = 0.01\n"
+    );
+    Scenario::from_toml(&text).expect("the perfect descent reads")
+}
+
+#[test]
+fn thrust_descent_releases_into_a_ballistic_fall() {
+    // A perfect loop (sensors without errors) on level ground, upright and without rates,
+    // at release heights 5, 7.5 and 10 m and latencies of 0, 1 and 2 periods:
+    // - it releases at or below the release height (the altimeter reads the truth), at the
+    //   first control instant whose reading allows it: no earlier reading of the descent
+    //   was both at or below the release height and slower than the release speed;
+    // - its approach rate at release is below the release speed (the sensed one is the
+    //   true one);
+    // - no thruster fires after the release (the burn's queued commands are dropped), and
+    //   the first contact comes when the ballistic fall from the recorded release state,
+    //   H + v t - g0 t^2 / 2 = 0, reaches the surface: t = (v + sqrt(v^2 + 2 g0 H)) / g0,
+    //   within one 1 ms contact step (the upright gear's four footpads touch at once;
+    //   tolerance 2 ms).
+    let mut table = Table::new("thrust: descent, release and ballistic fall");
+    let g0 = 0.0168;
+    for latency in [0, 1, 2] {
+        let s = perfect_descent(latency);
+        let model = Model::new(&s);
+        for release in [5.0, 7.5, 10.0] {
+            let sample = sample_of(Inputs {
+                release_height_m: release,
+                ..quiet()
+            });
+            let mut fired_after_release = 0.0_f64;
+            // Readings of the descent that would have allowed a release.
+            let mut could_release = 0;
+            let mut last_reading = f64::NAN;
+            let summary = run(&model, &sample, |r: &StepReport| {
+                let Some(c) = r.control.as_ref() else { return };
+                if c.phase != "descent" {
+                    fired_after_release = fired_after_release.max(r.thrust.flow_n);
+                    return;
+                }
+                if let Some(s) = c.sensed
+                    && s.t_s != last_reading
+                {
+                    last_reading = s.t_s;
+                    let height = s.altitude_m - CG_HEIGHT_M;
+                    could_release +=
+                        usize::from(height <= release && s.velocity_m_s.z.abs() < 0.01);
+                }
+            });
+            let c = *summary.control.expect("a control summary");
+            let case = format!("latency {latency}, release height {release} m");
+            table.equal(&case, "released", c.release_time_s.is_finite(), true);
+            table.at_most(
+                &case,
+                "release altitude - release height (m)",
+                c.release_altitude_m - release,
+                0.0,
+            );
+            table.equal(
+                &case,
+                "readings that could release before the release",
+                could_release,
+                0,
+            );
+            let [vx, vy, vz] = c.release_velocity_m_s;
+            table.at_most(&case, "|approach rate| at release (m/s)", vz.abs(), 0.01);
+            table.at_most(
+                &case,
+                "horizontal speed at release (m/s)",
+                vx.hypot(vy),
+                1e-9,
+            );
+            table.at_most(&case, "thrust after release (N)", fired_after_release, 0.0);
+            let fall = (vz + (vz * vz + 2.0 * g0 * c.release_altitude_m).sqrt()) / g0;
+            table.close(
+                &case,
+                "first contact (s)",
+                summary.first_contact_s.unwrap_or(f64::NAN),
+                c.release_time_s + fall,
+                2e-3,
+            );
+        }
+    }
+    table.finish();
+}

@@ -52,7 +52,7 @@ pub struct SweepInfo<'a> {
 
 /// The columns of what a control loop did, and of its sampled law parameters: name, unit,
 /// description, and the law a parameter belongs to (empty: every control loop).
-pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 8] = [
+pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 13] = [
     (
         "propellant_kg",
         "kg",
@@ -101,6 +101,37 @@ pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 8] = [
         "sampled law parameter: attitude hold rate gain",
         "attitude_hold",
     ),
+    (
+        "release_time_s",
+        "s",
+        "when the descent law released the lander (NaN: contact came first)",
+        "descent",
+    ),
+    (
+        "release_altitude_m",
+        "m",
+        "true height of the footpads at release: CG altitude above the surface plane less \
+         the footpads' depth below the CG",
+        "descent",
+    ),
+    (
+        "release_vx_m_s",
+        "m/s",
+        "true CG velocity at release, X_I (the residual velocity of the descent)",
+        "descent",
+    ),
+    (
+        "release_vy_m_s",
+        "m/s",
+        "true CG velocity at release, Y_I",
+        "descent",
+    ),
+    (
+        "release_vz_m_s",
+        "m/s",
+        "true CG velocity at release, Z_I",
+        "descent",
+    ),
 ];
 
 /// The names of the `CONTROL_COLUMNS` a sweep of `scenario` writes.
@@ -114,6 +145,7 @@ pub fn control_columns(scenario: &crate::scenario::Scenario) -> Vec<&'static str
         .filter(|(_, _, _, law)| match *law {
             "hold_down" => c.hold_down.is_some(),
             "attitude_hold" => c.attitude_hold.is_some(),
+            "descent" => c.descent.is_some(),
             _ => true,
         })
         .map(|c| c.0)
@@ -338,6 +370,11 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
             "hold_down_duration_s" => f64s(&|r| control(r).hold_down_duration_s),
             "attitude_kp_n_m_per_rad" => f64s(&|r| control(r).kp_n_m_per_rad),
             "attitude_kd_n_m_s_per_rad" => f64s(&|r| control(r).kd_n_m_s_per_rad),
+            "release_time_s" => f64s(&|r| control(r).release_time_s),
+            "release_altitude_m" => f64s(&|r| control(r).release_altitude_m),
+            "release_vx_m_s" => f64s(&|r| control(r).release_velocity_m_s[0]),
+            "release_vy_m_s" => f64s(&|r| control(r).release_velocity_m_s[1]),
+            "release_vz_m_s" => f64s(&|r| control(r).release_velocity_m_s[2]),
             other => anyhow::bail!("no column {other} in a sweep"),
         });
     }

@@ -404,8 +404,8 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
             PHASE_COLUMN,
             DataType::Utf8,
             "1",
-            "phase of the control loop during the step: fall, hold_down, user (a law of \
-             the user's own) or done",
+            "phase of the control loop during the step: descent, fall, hold_down, user (a \
+             law of the user's own) or done",
         ));
         fields.extend(
             read.iter()

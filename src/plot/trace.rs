@@ -448,23 +448,38 @@ fn thrust_picture(root: &Area<'_>, tr: &Trace) -> anyhow::Result<()> {
 }
 
 /// When each thruster fires: a bar per firing on the thruster's row, thruster 0 on top;
-/// each row is labelled with the thruster's thrust as built.
+/// each row is labelled with the thruster's number and its thrust as built.
 fn firing_panel(area: &Area<'_>, tr: &Trace, range: std::ops::Range<f64>) -> anyhow::Result<()> {
     let n = tr.thrusters;
     let top = 0.5;
     let bottom = 0.5 - n as f64;
+    let thrusts = (0..n)
+        .map(|j| {
+            Ok(tr
+                .column(&format!("thruster{j}_thrust_n"))?
+                .iter()
+                .copied()
+                .fold(0.0, f64::max))
+        })
+        .collect::<anyhow::Result<Vec<f64>>>()?;
     let mut chart = ChartBuilder::on(area)
         .caption("firings: when each thruster is on", (FONT, 18))
         .margin(8)
         .x_label_area_size(38)
-        .y_label_area_size(78)
+        .y_label_area_size(104)
         .build_cartesian_2d(range.clone(), bottom..top)
         .map_err(drawing)?;
-    // Row j at y = -j: a tick label per whole value, none between.
+    // Row j at y = -j: a tick label per whole value, none between (`+ 0.0` makes the -0
+    // of row 0 a 0).
     let label = |v: &f64| {
-        let j = -v.round();
+        let j = -v.round() + 0.0;
         if (v + j).abs() < 1e-6 && j >= 0.0 && j < n as f64 {
-            format!("{j:.0}")
+            let thrust = thrusts[j as usize];
+            if thrust > 0.0 {
+                format!("{j:.0}: {thrust:.2} N")
+            } else {
+                format!("{j:.0}")
+            }
         } else {
             String::new()
         }
@@ -472,7 +487,7 @@ fn firing_panel(area: &Area<'_>, tr: &Trace, range: std::ops::Range<f64>) -> any
     chart
         .configure_mesh()
         .x_desc(TIME)
-        .y_desc("thruster")
+        .y_desc("thruster: thrust as built")
         .y_labels(n + 1)
         .y_label_formatter(&label)
         .label_style((FONT, 13))
@@ -484,11 +499,6 @@ fn firing_panel(area: &Area<'_>, tr: &Trace, range: std::ops::Range<f64>) -> any
     for j in 0..n {
         let colour = SERIES_COLOURS[j % SERIES_COLOURS.len()];
         let y = -(j as f64);
-        let thrust = tr
-            .column(&format!("thruster{j}_thrust_n"))?
-            .iter()
-            .copied()
-            .fold(0.0, f64::max);
         // A firing shorter than a pixel still shows: at least 1/2000 of the time axis.
         chart
             .draw_series(tr.firings(j)?.into_iter().map(|(a, b)| {
@@ -498,15 +508,6 @@ fn firing_panel(area: &Area<'_>, tr: &Trace, range: std::ops::Range<f64>) -> any
                 )
             }))
             .map_err(drawing)?;
-        if thrust > 0.0 {
-            chart
-                .draw_series([Text::new(
-                    format!("{thrust:.2} N"),
-                    (range.end - 0.07 * width, y + 0.45),
-                    (FONT, 11),
-                )])
-                .map_err(drawing)?;
-        }
     }
     Ok(())
 }

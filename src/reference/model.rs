@@ -80,8 +80,11 @@ pub struct Model {
     pub thresholds: Thresholds,
     pub attitude_surface: bool,
     pub clearance_m: f64,
-    /// Whether a sample starts at the release (the fall stepped), not at touchdown.
-    pub start_at_release: bool,
+    /// Where a sample starts, with the height of its lowest footpad above the touchdown
+    /// point and its speed down `Z_I` there (before the velocity errors) where these do not
+    /// come from the sample's release height: a descent's start.
+    pub start: crate::scenario::Start,
+    pub descent_start: Option<(f64, f64)>,
     /// The control loop and its thrusters, if any.
     pub control: Option<crate::control::ControlModel>,
 }
@@ -147,6 +150,7 @@ impl Model {
         });
         let o = &s.outcome;
         let leg_reach_m = legs.iter().map(|l| l.tip_m.length()).fold(0.0, f64::max);
+        let footpad_depth_m = legs.iter().map(|l| -l.tip_m.z).fold(0.0, f64::max);
         Model {
             gravity_m_s2: s.gravity_m_s2,
             mass_kg: s.lander.mass_kg,
@@ -180,8 +184,13 @@ impl Model {
             attitude_surface: s.initial.attitude_reference
                 == crate::scenario::AttitudeReference::Surface,
             clearance_m: s.initial.clearance_m,
-            start_at_release: s.initial.start == crate::scenario::Start::Release,
-            control: crate::control::ControlModel::of(s, leg_reach_m),
+            start: s.initial.start,
+            descent_start: s
+                .control
+                .as_ref()
+                .and_then(|c| c.descent)
+                .map(|d| (d.start_altitude_m, d.start_speed_m_s)),
+            control: crate::control::ControlModel::of(s, leg_reach_m, footpad_depth_m),
         }
     }
 

@@ -8,6 +8,7 @@ use super::rigid_body::Body;
 use super::step::{State, StepReport, step, step_size};
 use crate::control::{LaneControl, truth_of};
 use crate::sampling::Sample;
+use crate::scenario::Start;
 use glam::{DQuat, DVec3};
 
 /// The state at the last moment of the free fall: attitude and velocity against the
@@ -30,11 +31,12 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
             x.pitch_deg.to_radians(),
             x.roll_deg.to_radians(),
         );
-    // From the release the fall is stepped; at touchdown it is over, and its speed known.
-    let (fall, above) = if model.start_at_release {
-        (0.0, x.release_height_m)
-    } else {
-        ((2.0 * model.gravity_m_s2 * x.release_height_m).sqrt(), 0.0)
+    // From the release the fall is stepped; at touchdown it is over, and its speed known;
+    // a descent starts higher, moving down, and the law releases the lander.
+    let (fall, above) = match (model.start, model.descent_start) {
+        (Start::Release, _) => (0.0, x.release_height_m),
+        (Start::Descent, Some((altitude, speed))) => (speed, altitude),
+        _ => ((2.0 * model.gravity_m_s2 * x.release_height_m).sqrt(), 0.0),
     };
     let velocity = reference
         * DVec3::new(

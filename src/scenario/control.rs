@@ -4,10 +4,11 @@ use super::ScenarioError;
 use super::inputs::{Dist, read_dist_at_least};
 use super::reader::Reader;
 
-/// The control loop: its rate, latency, sensors and laws. Laws combine by phase: before
-/// contact is sensed, `attitude_hold` (if given) holds the attitude through the fall;
-/// once it is sensed, `hold_down` (if given) pushes the lander onto the surface; after it,
-/// nothing fires.
+/// The control loop: its rate, latency, sensors and laws. Laws combine by phase: from a
+/// descent start, `descent` brakes the lander to release it at the release height;
+/// before contact is sensed, `attitude_hold` (if given) holds the attitude through the
+/// descent and the fall; once it is sensed, `hold_down` (if given) pushes the lander onto
+/// the surface; after it, nothing fires.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Control {
     /// Control instants per second: the sensors are read and a command issued at
@@ -18,6 +19,7 @@ pub struct Control {
     pub sensors: Sensors,
     pub hold_down: Option<HoldDown>,
     pub attitude_hold: Option<AttitudeHold>,
+    pub descent: Option<Descent>,
     /// A law of the user's own, by the name its program registered it under
     /// (`control::register_law`): it commands in every phase, in place of the built-in
     /// laws.
@@ -49,6 +51,30 @@ pub struct HoldDown {
     /// Whether it stops sooner, at the first instant at which the sensed speed and rate
     /// have stayed below the rest thresholds (`[outcome]`) for `outcome.hold_time_s`.
     pub until_rest: bool,
+}
+
+/// `descent`: the last manoeuvre before the free fall (seed chapter 1). The sample starts
+/// (`initial.start = "descent"`) with the lowest footpad `start_altitude_m` above the
+/// touchdown point, descending at `start_speed_m_s` (plus the velocity-error inputs: the
+/// navigation errors). At every control instant the law asks for the acceleration
+/// `gain_per_s (h'_ref - h') n + g` (gravity compensated) along the surface normal `n`,
+/// where `h` is the sensed height of the footpads (the altimeter's CG altitude less the
+/// CG's height above the footpads), `h' = n . v` its rate from the sensed velocity, and
+/// `h'_ref = -sqrt(2 braking_m_s2 (h - h_r))` above the release height `h_r` (the sample's
+/// `release_height_m`), 0 at or below it. At the first instant at or below `h_r` with
+/// `|h'|` below `release_speed_m_s` it releases the lander (the burn stops at once: its
+/// commands still waiting out the latency are dropped): the fall that follows, and the
+/// residual velocity, come from the law and its sensors. Velocity along the surface
+/// changes no height and is left as it is (the navigation error).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Descent {
+    pub start_altitude_m: f64,
+    pub start_speed_m_s: f64,
+    /// Deceleration the reference profile plans with, m/s^2.
+    pub braking_m_s2: f64,
+    /// Velocity-error gain, 1/s.
+    pub gain_per_s: f64,
+    pub release_speed_m_s: f64,
 }
 
 /// What `attitude_hold` aligns `Z_B` with.
@@ -185,6 +211,20 @@ pub(super) fn read_control(top: &mut Reader) -> Result<Option<Control>, Scenario
             Some(out)
         }
     };
+    let descent = match r.table("descent")? {
+        None => None,
+        Some(mut d) => {
+            let out = Descent {
+                start_altitude_m: d.positive("start_altitude_m", 30.0)?,
+                start_speed_m_s: d.non_negative("start_speed_m_s", 0.3)?,
+                braking_m_s2: d.positive("braking_m_s2", 0.01)?,
+                gain_per_s: d.positive("gain_per_s", 0.5)?,
+                release_speed_m_s: d.positive("release_speed_m_s", 0.01)?,
+            };
+            d.finish()?;
+            Some(out)
+        }
+    };
     let law = match r.take("law") {
         None => None,
         Some(toml::Value::String(s)) if !s.is_empty() => Some(s),
@@ -203,6 +243,7 @@ pub(super) fn read_control(top: &mut Reader) -> Result<Option<Control>, Scenario
         sensors,
         hold_down,
         attitude_hold,
+        descent,
         law,
     }))
 }

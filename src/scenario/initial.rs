@@ -21,6 +21,9 @@ pub enum Start {
     /// At the release, `release_height_m` above the touchdown point, the fall stepped (a
     /// control loop acts during it).
     Release,
+    /// Descending under power from `[control.descent]`'s start altitude: the descent law
+    /// brakes the lander and releases it at `release_height_m`.
+    Descent,
 }
 
 /// The initial state besides the sampled inputs.
@@ -51,10 +54,12 @@ pub(super) fn read_initial(top: &mut Reader, d: &Initial) -> Result<Initial, Sce
         match d.start {
             Start::Touchdown => "touchdown",
             Start::Release => "release",
+            Start::Descent => "descent",
         },
-        &["touchdown", "release"],
+        &["touchdown", "release", "descent"],
     )? {
         "release" => Start::Release,
+        "descent" => Start::Descent,
         _ => Start::Touchdown,
     };
     r.finish()?;

@@ -16,7 +16,7 @@ mod simulation;
 mod surface;
 mod thrusters;
 
-pub use control::{AttitudeHold, Control, HoldDown, LAW_PARAMETERS, Sensors, Target};
+pub use control::{AttitudeHold, Control, Descent, HoldDown, LAW_PARAMETERS, Sensors, Target};
 pub use damper::{Damper, Stage, StrutAxes};
 pub use initial::{AttitudeReference, Initial, Start};
 pub use inputs::{Dist, INPUT_FIELDS, Inputs};
@@ -416,6 +416,19 @@ impl Scenario {
                 self.initial.clearance_m,
             ),
             Start::Release => (0.0, height + self.initial.clearance_m),
+            // Unbraked from the descent's start: a bound (the law brakes, then releases),
+            // enough to refuse a run that could not land even so.
+            Start::Descent => {
+                self.control
+                    .as_ref()
+                    .and_then(|c| c.descent)
+                    .map_or((0.0, 0.0), |d| {
+                        (
+                            d.start_speed_m_s,
+                            d.start_altitude_m + self.initial.clearance_m,
+                        )
+                    })
+            }
         };
         let reach_s = 2.0 * gap / (v + (v * v + 2.0 * self.gravity_m_s2 * gap).sqrt());
         if reach_s > self.simulation.t_max_s {
@@ -435,6 +448,11 @@ impl Scenario {
                              inputs.release_height_m up to {height} m above initial.clearance_m \
                              = {} m",
                             self.initial.clearance_m
+                        ),
+                        Start::Descent => format!(
+                            "even unbraked, from control.descent.start_altitude_m above \
+                             initial.clearance_m ({gap} m) at control.descent.start_speed_m_s \
+                             = {v} m/s"
                         ),
                     },
                     g = self.gravity_m_s2
