@@ -352,6 +352,40 @@ impl ControlModel {
     }
 }
 
+/// A sample's descent (`[control.descent]`): its parameters as drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DescentDraw {
+    pub start_altitude_m: f64,
+    pub start_speed_m_s: f64,
+    pub braking_m_s2: f64,
+    pub gain_per_s: f64,
+    pub release_speed_m_s: f64,
+}
+
+impl ControlModel {
+    /// The descent of `sample`, if the loop has one: each parameter drawn from a stream of
+    /// its own (at the sample's grid point for a grid). The initial state (a descent's
+    /// start) and the loop both take it from here.
+    #[must_use]
+    pub fn descent_draw(&self, sample: &Sample) -> Option<DescentDraw> {
+        let d = self.config.descent.as_ref()?;
+        let g = crate::sampling::law_grid(&self.config, sample.law_cell);
+        let seed = sample.seed;
+        Some(DescentDraw {
+            start_altitude_m: draw(&d.start_altitude_m, seed, "descent_start_altitude_m", g[4]),
+            start_speed_m_s: draw(&d.start_speed_m_s, seed, "descent_start_speed_m_s", g[5]),
+            braking_m_s2: draw(&d.braking_m_s2, seed, "descent_braking_m_s2", g[6]),
+            gain_per_s: draw(&d.gain_per_s, seed, "descent_gain_per_s", g[7]),
+            release_speed_m_s: draw(
+                &d.release_speed_m_s,
+                seed,
+                "descent_release_speed_m_s",
+                g[8],
+            ),
+        })
+    }
+}
+
 /// Refuses a control loop that cannot work: one without thrusters or without a law, a
 /// hold-down the thrusters cannot push pure along `-Z_B` (or not as hard as asked), an
 /// attitude hold they cannot turn about `X_B` and `Y_B`, a descent they cannot brake, or a
@@ -437,14 +471,15 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
     let allocation = Allocation::new(&s.thrusters);
     if let Some(d) = &c.descent {
         // Braking at `braking_m_s2` against gravity, upright: along +Z_B, pure.
-        let need = s.lander.mass_kg * (s.gravity_m_s2 + d.braking_m_s2);
+        let braking = d.braking_m_s2.support().1;
+        let need = s.lander.mass_kg * (s.gravity_m_s2 + braking);
         let capacity = allocation.unit[4]
             .as_ref()
             .map_or(0.0, |u| 1.0 / u.iter().copied().fold(0.0, f64::max));
         if capacity < need {
             return Err(invalid(
                 "control.descent.braking_m_s2",
-                format!("{}", d.braking_m_s2),
+                format!("up to {braking}"),
                 format!(
                     "a braking the thrusters can give: against gravity it needs mass_kg \
                      (gravity_m_s2 + braking_m_s2) = {need:.4} N along +Z_B through the CG, \
@@ -577,6 +612,8 @@ pub struct ControlSummary {
     pub release_time_s: f64,
     pub release_altitude_m: f64,
     pub release_velocity_m_s: [f64; 3],
+    /// The sample's drawn descent (none without one).
+    pub descent: Option<DescentDraw>,
 }
 
 /// One lander's control loop: its sampled thruster errors, sensor biases and law
@@ -613,6 +650,8 @@ pub struct LaneControl {
     last_sensed: Option<Sensed>,
     /// The sample's release height, m: where the descent law releases the lander.
     release_height_m: f64,
+    /// The sample's descent, if the loop has one.
+    descent: Option<DescentDraw>,
     /// Whether the event under way is a control instant (`begin` to `end`).
     instant_due: bool,
     /// Control instants so far.
@@ -687,7 +726,8 @@ impl LaneControl {
     /// drawn from streams of its own (law parameters on a grid at the sample's point of it).
     #[must_use]
     pub fn new(m: &ControlModel, sample: &Sample) -> LaneControl {
-        let (seed, g) = (sample.seed, sample.law_grid);
+        let seed = sample.seed;
+        let g = crate::sampling::law_grid(&m.config, sample.law_cell);
         let mut errors = stream(seed, "thrusters");
         let (mut force_b_n, mut moment_b_n_m) = (Vec::new(), Vec::new());
         for t in &m.thrusters {
@@ -746,6 +786,7 @@ impl LaneControl {
             impulse_n_s: 0.0,
             last_sensed: None,
             release_height_m: sample.inputs.release_height_m,
+            descent: m.descent_draw(sample),
             instant_due: false,
             instants: 0,
             memory: [0.0; LAW_MEMORY],
@@ -758,6 +799,7 @@ impl LaneControl {
                 release_time_s: nan,
                 release_altitude_m: nan,
                 release_velocity_m_s: [nan; 3],
+                descent: m.descent_draw(sample),
                 ..ControlSummary::default()
             },
         }
@@ -921,7 +963,7 @@ impl LaneControl {
         let sensed = self.last_sensed.expect("begin read the sensors");
         let t = sensed.t_s;
         if self.phase == Phase::Descent && !sensed.contact {
-            let d = c.descent.as_ref().expect("a descent phase has its law");
+            let d = self.descent.expect("a descent phase has its law");
             let height = sensed.altitude_m - m.footpad_depth_m;
             let approach = truth.normal.dot(sensed.velocity_m_s);
             if height <= self.release_height_m && approach.abs() < d.release_speed_m_s {
@@ -1034,14 +1076,10 @@ impl LaneControl {
     /// The descent's wrench: `descent_force`, and `attitude_hold`'s torque if the loop has
     /// it.
     fn descent(&self, m: &ControlModel, sensed: &Sensed, normal: DVec3) -> Wrench {
-        let d = m
-            .config
-            .descent
-            .as_ref()
-            .expect("a descent phase has its law");
+        let d = self.descent.expect("a descent phase has its law");
         Wrench {
             force_b_n: descent_force(
-                d,
+                &d,
                 m.mass_kg,
                 m.gravity_m_s2,
                 sensed.altitude_m - m.footpad_depth_m,
@@ -1085,7 +1123,7 @@ impl LaneControl {
 /// error) changes no height and is left as it is.
 #[must_use]
 pub fn descent_force(
-    d: &crate::scenario::Descent,
+    d: &DescentDraw,
     mass_kg: f64,
     gravity_m_s2: f64,
     height_m: f64,

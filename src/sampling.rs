@@ -11,7 +11,7 @@
 //! differ in the last bit between CPUs with and without FMA: a sample's inputs are the same
 //! bits on every machine.
 
-use crate::scenario::{Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, Scenario};
+use crate::scenario::{Control, Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, Scenario};
 use rand_core::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -26,9 +26,10 @@ pub struct Sample {
     pub terrain_tile: u32,
     /// Offset of the landing point in the tile, along the slope's tangent axes, m.
     pub terrain_offset_m: [f64; 2],
-    /// Grid coordinates of the control laws' parameters (`Control::parameters`; 0 where a
-    /// parameter is not on a grid): their values are drawn with the control loop.
-    pub law_grid: [u64; LAW_PARAMETERS],
+    /// The sample's cell of the grid of the control laws' parameters (0 where none is on a
+    /// grid; `law_grid` gives each parameter's coordinate): their values are drawn with the
+    /// control loop.
+    pub law_cell: u64,
 }
 
 /// SplitMix64's output function: a bijective mix of 64 bits.
@@ -214,21 +215,34 @@ fn grid_indices<const N: usize>(dists: &[Dist; N], index: u64) -> [u64; N] {
     out
 }
 
+/// The distributions of the control laws' parameters (`Control::parameters`; a fixed 0
+/// where the scenario has no such law).
+fn law_dists(control: Option<&Control>) -> [Dist; LAW_PARAMETERS] {
+    control
+        .map_or([None; LAW_PARAMETERS], Control::parameters)
+        .map(|d| d.unwrap_or(Dist::Fixed(0.0)))
+}
+
 /// The distributions on the grid of `scenario`: its inputs, then its control laws'
-/// parameters (a fixed 0 where it has no such law).
+/// parameters, which therefore vary fastest.
 fn grid_dists(scenario: &Scenario) -> [Dist; INPUT_FIELDS.len() + LAW_PARAMETERS] {
     let inputs = scenario.inputs.to_array();
-    let laws = scenario
-        .control
-        .as_ref()
-        .map_or([None; LAW_PARAMETERS], |c| c.parameters());
+    let laws = law_dists(scenario.control.as_ref());
     std::array::from_fn(|k| {
         if k < inputs.len() {
             inputs[k]
         } else {
-            laws[k - inputs.len()].unwrap_or(Dist::Fixed(0.0))
+            laws[k - inputs.len()]
         }
     })
+}
+
+/// The grid coordinate of each law parameter of the sample in law cell `law_cell`
+/// (`Sample::law_cell`) of a loop `control`: the law parameters vary fastest on the
+/// grid, so their digits are those of the cell alone.
+#[must_use]
+pub fn law_grid(control: &Control, law_cell: u64) -> [u64; LAW_PARAMETERS] {
+    grid_indices(&law_dists(Some(control)), law_cell)
 }
 
 /// Number of points of the grid (1 when no input or law parameter is a grid).
@@ -276,7 +290,17 @@ pub fn sample(scenario: &Scenario, index: u64) -> Sample {
         inputs: Inputs::from_array(values),
         terrain_tile,
         terrain_offset_m,
-        law_grid: std::array::from_fn(|k| grid[INPUT_FIELDS.len() + k]),
+        law_cell: {
+            let laws = law_dists(scenario.control.as_ref());
+            let size: u64 = laws
+                .iter()
+                .map(|d| match d {
+                    Dist::Grid { count, .. } => *count,
+                    _ => 1,
+                })
+                .product();
+            index % size
+        },
     }
 }
 
@@ -489,17 +513,21 @@ mod tests {
                  duration_s = { dist = \"grid\", min = 5.0, max = 20.0, count = 4 }\n";
         let s = Scenario::from_toml(&text).unwrap();
         assert_eq!(grid_size(&s), 3 * 9 * 4);
+        let control = s.control.clone().unwrap();
         let pick = |i| {
             let x = sample(&s, i);
-            (x.inputs.slope_deg, x.law_grid)
+            let g = law_grid(&control, x.law_cell);
+            (x.inputs.slope_deg, g[0], g[1])
         };
-        assert_eq!(pick(0), (0.0, [0, 0, 0, 0]));
-        assert_eq!(pick(1), (0.0, [0, 1, 0, 0]));
-        assert_eq!(pick(4), (0.0, [1, 0, 0, 0]));
-        assert_eq!(pick(36), (10.0, [0, 0, 0, 0]));
-        assert_eq!(pick(107), (20.0, [8, 3, 0, 0]));
-        assert_eq!(pick(108), (0.0, [0, 0, 0, 0]));
-        // Without a control loop nothing joins the grid.
-        assert_eq!(sample(&Scenario::default(), 5).law_grid, [0; 4]);
+        assert_eq!(pick(0), (0.0, 0, 0));
+        assert_eq!(pick(1), (0.0, 0, 1));
+        assert_eq!(pick(4), (0.0, 1, 0));
+        assert_eq!(pick(36), (10.0, 0, 0));
+        assert_eq!(pick(107), (20.0, 8, 3));
+        assert_eq!(pick(108), (0.0, 0, 0));
+        // Every law parameter the scenario has not is at 0; without a control loop
+        // nothing joins the grid.
+        assert!(law_grid(&control, 35)[2..].iter().all(|&g| g == 0));
+        assert_eq!(sample(&Scenario::default(), 5).law_cell, 0);
     }
 }

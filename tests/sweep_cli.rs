@@ -1016,7 +1016,7 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
             "[control]\n[control.descent]\nbraking_m_s2 = 0.05\n",
         ),
         &[
-            "`control.descent.braking_m_s2` = 0.05",
+            "`control.descent.braking_m_s2` = up to 0.05",
             "6.6800 N along +Z_B",
             "at most 4.0000 N",
         ],

@@ -36,7 +36,7 @@ fn sample_of(inputs: Inputs<f64>) -> Sample {
         inputs,
         terrain_tile: 0,
         terrain_offset_m: [0.0; 2],
-        law_grid: [0; 4],
+        law_cell: 0,
     }
 }
 
@@ -1189,5 +1189,91 @@ fn thrust_descent_releases_into_a_ballistic_fall() {
             );
         }
     }
+    table.finish();
+}
+
+#[test]
+fn thrust_descent_parameters_are_drawn_per_sample() {
+    // The descent's parameters are inputs like any other: a start altitude uniform in
+    // 12-18 m and a braking on a grid of 0.005 and 0.01 m/s^2. Each sample starts with its
+    // lowest footpad at its drawn altitude above the initial clearance (to rounding),
+    // the grid alternates sample by sample (law parameters vary fastest), and the sweep's
+    // rows carry the draws the initial state and the loop used.
+    let mut s = perfect_descent(1);
+    let d = s.control.as_mut().and_then(|c| c.descent.as_mut()).unwrap();
+    d.start_altitude_m = Dist::Uniform {
+        min: 12.0,
+        max: 18.0,
+    };
+    d.braking_m_s2 = Dist::Grid {
+        min: 0.005,
+        max: 0.01,
+        count: 2,
+    };
+    let model = Model::new(&s);
+    let mut table = Table::new("thrust: descent parameters drawn per sample");
+    let n = 16;
+    let mut rows = Vec::new();
+    let never = std::sync::atomic::AtomicUsize::new(0);
+    touchdown::sweep::run_until(&s, &model, Isa::detect(), 0..n, 8, &never, |r| {
+        rows.extend(r);
+        Ok(())
+    })
+    .unwrap();
+    let mut altitudes = Vec::new();
+    for row in &rows {
+        let sample = sampling::sample(&s, row.sample.index);
+        let draw = model
+            .control
+            .as_ref()
+            .and_then(|m| m.descent_draw(&sample))
+            .expect("a descent");
+        let case = format!("sample {}", row.sample.index);
+        // The start puts the lowest footpad (along the slope's normal n) the clearance
+        // above the surface, then raises the lander by the start altitude along Z_I: its
+        // height above the plane is clearance + altitude n_z.
+        let surface = Surface::of(&sample);
+        let start = initial_state(&model, &surface, &sample);
+        let n = surface.normal;
+        let footpad = (model
+            .legs
+            .iter()
+            .map(|l| n.dot(start.body.position_m + start.body.attitude * l.tip_m))
+            .fold(f64::INFINITY, f64::min)
+            - s.initial.clearance_m)
+            / n.z;
+        table.close(
+            &case,
+            "start footpad height (m)",
+            footpad,
+            draw.start_altitude_m,
+            1e-12,
+        );
+        table.equal(
+            &case,
+            "braking on the grid (m/s^2)",
+            draw.braking_m_s2,
+            [0.005, 0.01][(row.sample.index % 2) as usize],
+        );
+        let row_draw = row
+            .summary
+            .control
+            .as_ref()
+            .and_then(|c| c.descent)
+            .expect("the row's descent");
+        table.equal(&case, "the row's draw", row_draw, draw);
+        altitudes.push(draw.start_altitude_m);
+    }
+    let (lo, hi) = altitudes
+        .iter()
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &a| {
+            (lo.min(a), hi.max(a))
+        });
+    table.equal(
+        "16 samples",
+        "start altitudes within 12-18 m and not all one",
+        lo >= 12.0 && hi <= 18.0 && hi - lo > 1.0,
+        true,
+    );
     table.finish();
 }

@@ -33,7 +33,7 @@ fn sample_of(inputs: Inputs<f64>) -> Sample {
         inputs,
         terrain_tile: 0,
         terrain_offset_m: [0.0; 2],
-        law_grid: [0; 4],
+        law_cell: 0,
     }
 }
 

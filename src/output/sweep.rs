@@ -52,7 +52,7 @@ pub struct SweepInfo<'a> {
 
 /// The columns of what a control loop did, and of its sampled law parameters: name, unit,
 /// description, and the law a parameter belongs to (empty: every control loop).
-pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 13] = [
+pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 18] = [
     (
         "propellant_kg",
         "kg",
@@ -100,6 +100,36 @@ pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 13] = [
         "N m s/rad",
         "sampled law parameter: attitude hold rate gain",
         "attitude_hold",
+    ),
+    (
+        "descent_start_altitude_m",
+        "m",
+        "sampled law parameter: height of the lowest footpad at the descent's start",
+        "descent",
+    ),
+    (
+        "descent_start_speed_m_s",
+        "m/s",
+        "sampled law parameter: descent speed at the start, down Z_I",
+        "descent",
+    ),
+    (
+        "descent_braking_m_s2",
+        "m/s^2",
+        "sampled law parameter: braking of the descent's profile",
+        "descent",
+    ),
+    (
+        "descent_gain_per_s",
+        "1/s",
+        "sampled law parameter: the descent's approach-rate gain",
+        "descent",
+    ),
+    (
+        "descent_release_speed_m_s",
+        "m/s",
+        "sampled law parameter: approach rate below which the descent releases",
+        "descent",
     ),
     (
         "release_time_s",
@@ -360,6 +390,7 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
         cols.push(f64s(&|r| r.summary.legs[k].absorbed_j));
     }
     let control = |r: &Row| r.summary.control.as_deref().copied().unwrap_or_default();
+    let descent = |r: &Row| control(r).descent.unwrap_or_default();
     for field in schema.fields().iter().skip(cols.len()) {
         cols.push(match field.name().as_str() {
             "propellant_kg" => f64s(&|r| control(r).propellant_kg),
@@ -370,6 +401,11 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
             "hold_down_duration_s" => f64s(&|r| control(r).hold_down_duration_s),
             "attitude_kp_n_m_per_rad" => f64s(&|r| control(r).kp_n_m_per_rad),
             "attitude_kd_n_m_s_per_rad" => f64s(&|r| control(r).kd_n_m_s_per_rad),
+            "descent_start_altitude_m" => f64s(&|r| descent(r).start_altitude_m),
+            "descent_start_speed_m_s" => f64s(&|r| descent(r).start_speed_m_s),
+            "descent_braking_m_s2" => f64s(&|r| descent(r).braking_m_s2),
+            "descent_gain_per_s" => f64s(&|r| descent(r).gain_per_s),
+            "descent_release_speed_m_s" => f64s(&|r| descent(r).release_speed_m_s),
             "release_time_s" => f64s(&|r| control(r).release_time_s),
             "release_altitude_m" => f64s(&|r| control(r).release_altitude_m),
             "release_vx_m_s" => f64s(&|r| control(r).release_velocity_m_s[0]),

@@ -80,11 +80,9 @@ pub struct Model {
     pub thresholds: Thresholds,
     pub attitude_surface: bool,
     pub clearance_m: f64,
-    /// Where a sample starts, with the height of its lowest footpad above the touchdown
-    /// point and its speed down `Z_I` there (before the velocity errors) where these do not
-    /// come from the sample's release height: a descent's start.
+    /// Where a sample starts (a descent's start from its drawn descent,
+    /// `ControlModel::descent_draw`).
     pub start: crate::scenario::Start,
-    pub descent_start: Option<(f64, f64)>,
     /// The control loop and its thrusters, if any.
     pub control: Option<crate::control::ControlModel>,
 }
@@ -185,11 +183,6 @@ impl Model {
                 == crate::scenario::AttitudeReference::Surface,
             clearance_m: s.initial.clearance_m,
             start: s.initial.start,
-            descent_start: s
-                .control
-                .as_ref()
-                .and_then(|c| c.descent)
-                .map(|d| (d.start_altitude_m, d.start_speed_m_s)),
             control: crate::control::ControlModel::of(s, leg_reach_m, footpad_depth_m),
         }
     }

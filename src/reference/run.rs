@@ -33,9 +33,10 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
         );
     // From the release the fall is stepped; at touchdown it is over, and its speed known;
     // a descent starts higher, moving down, and the law releases the lander.
-    let (fall, above) = match (model.start, model.descent_start) {
+    let descent = model.control.as_ref().and_then(|m| m.descent_draw(sample));
+    let (fall, above) = match (model.start, descent) {
         (Start::Release, _) => (0.0, x.release_height_m),
-        (Start::Descent, Some((altitude, speed))) => (speed, altitude),
+        (Start::Descent, Some(d)) => (d.start_speed_m_s, d.start_altitude_m),
         _ => ((2.0 * model.gravity_m_s2 * x.release_height_m).sqrt(), 0.0),
     };
     let velocity = reference

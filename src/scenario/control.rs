@@ -65,16 +65,17 @@ pub struct HoldDown {
 /// `|h'|` below `release_speed_m_s` it releases the lander (the burn stops at once: its
 /// commands still waiting out the latency are dropped): the fall that follows, and the
 /// residual velocity, come from the law and its sensors. Velocity along the surface
-/// changes no height and is left as it is (the navigation error).
+/// changes no height and is left as it is (the navigation error). Each parameter may be
+/// drawn per sample (`control::DescentDraw`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Descent {
-    pub start_altitude_m: f64,
-    pub start_speed_m_s: f64,
+    pub start_altitude_m: Dist,
+    pub start_speed_m_s: Dist,
     /// Deceleration the reference profile plans with, m/s^2.
-    pub braking_m_s2: f64,
-    /// Velocity-error gain, 1/s.
-    pub gain_per_s: f64,
-    pub release_speed_m_s: f64,
+    pub braking_m_s2: Dist,
+    /// Approach-rate error gain, 1/s.
+    pub gain_per_s: Dist,
+    pub release_speed_m_s: Dist,
 }
 
 /// What `attitude_hold` aligns `Z_B` with.
@@ -115,19 +116,29 @@ impl Default for Sensors {
 
 /// The law parameters a sample may draw, in the order they join the inputs' grid (after
 /// the inputs, the last varying fastest) and of `Control::parameters`.
-pub const LAW_PARAMETERS: usize = 4;
+pub const LAW_PARAMETERS: usize = 9;
 
 impl Control {
     /// The distributions of the law parameters (`LAW_PARAMETERS`): hold-down thrust and
-    /// duration, attitude-hold `kp` and `kd`; `None` where the scenario has no such law.
+    /// duration, attitude-hold `kp` and `kd`, the descent's start altitude and speed,
+    /// braking, gain and release speed; `None` where the scenario has no such law.
     #[must_use]
     pub fn parameters(&self) -> [Option<Dist>; LAW_PARAMETERS] {
-        let (h, a) = (self.hold_down.as_ref(), self.attitude_hold.as_ref());
+        let (h, a, d) = (
+            self.hold_down.as_ref(),
+            self.attitude_hold.as_ref(),
+            self.descent.as_ref(),
+        );
         [
             h.map(|h| h.thrust_n),
             h.map(|h| h.duration_s),
             a.map(|a| a.kp_n_m_per_rad),
             a.map(|a| a.kd_n_m_s_per_rad),
+            d.map(|d| d.start_altitude_m),
+            d.map(|d| d.start_speed_m_s),
+            d.map(|d| d.braking_m_s2),
+            d.map(|d| d.gain_per_s),
+            d.map(|d| d.release_speed_m_s),
         ]
     }
 }
@@ -214,12 +225,32 @@ pub(super) fn read_control(top: &mut Reader) -> Result<Option<Control>, Scenario
     let descent = match r.table("descent")? {
         None => None,
         Some(mut d) => {
+            // Greater than 0: at least the smallest positive number.
+            let mut positive = |key: &'static str, default: f64| {
+                read_dist_at_least(
+                    &mut d,
+                    key,
+                    Dist::Fixed(default),
+                    f64::MIN_POSITIVE,
+                    "values greater than 0",
+                )
+            };
+            let start_altitude_m = positive("start_altitude_m", 30.0)?;
+            let braking_m_s2 = positive("braking_m_s2", 0.01)?;
+            let gain_per_s = positive("gain_per_s", 0.5)?;
+            let release_speed_m_s = positive("release_speed_m_s", 0.01)?;
             let out = Descent {
-                start_altitude_m: d.positive("start_altitude_m", 30.0)?,
-                start_speed_m_s: d.non_negative("start_speed_m_s", 0.3)?,
-                braking_m_s2: d.positive("braking_m_s2", 0.01)?,
-                gain_per_s: d.positive("gain_per_s", 0.5)?,
-                release_speed_m_s: d.positive("release_speed_m_s", 0.01)?,
+                start_altitude_m,
+                start_speed_m_s: read_dist_at_least(
+                    &mut d,
+                    "start_speed_m_s",
+                    Dist::Fixed(0.3),
+                    0.0,
+                    "speeds of at least 0 m/s",
+                )?,
+                braking_m_s2,
+                gain_per_s,
+                release_speed_m_s,
             };
             d.finish()?;
             Some(out)

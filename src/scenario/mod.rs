@@ -424,8 +424,8 @@ impl Scenario {
                     .and_then(|c| c.descent)
                     .map_or((0.0, 0.0), |d| {
                         (
-                            d.start_speed_m_s,
-                            d.start_altitude_m + self.initial.clearance_m,
+                            d.start_speed_m_s.support().0,
+                            d.start_altitude_m.support().1 + self.initial.clearance_m,
                         )
                     })
             }
