@@ -650,8 +650,6 @@ pub struct LaneControl {
     last_sensed: Option<Sensed>,
     /// The sample's release height, m: where the descent law releases the lander.
     release_height_m: f64,
-    /// The sample's descent, if the loop has one.
-    descent: Option<DescentDraw>,
     /// Whether the event under way is a control instant (`begin` to `end`).
     instant_due: bool,
     /// Control instants so far.
@@ -786,7 +784,6 @@ impl LaneControl {
             impulse_n_s: 0.0,
             last_sensed: None,
             release_height_m: sample.inputs.release_height_m,
-            descent: m.descent_draw(sample),
             instant_due: false,
             instants: 0,
             memory: [0.0; LAW_MEMORY],
@@ -963,7 +960,7 @@ impl LaneControl {
         let sensed = self.last_sensed.expect("begin read the sensors");
         let t = sensed.t_s;
         if self.phase == Phase::Descent && !sensed.contact {
-            let d = self.descent.expect("a descent phase has its law");
+            let d = self.summary.descent.expect("a descent phase has its law");
             let height = sensed.altitude_m - m.footpad_depth_m;
             let approach = truth.normal.dot(sensed.velocity_m_s);
             if height <= self.release_height_m && approach.abs() < d.release_speed_m_s {
@@ -1076,7 +1073,7 @@ impl LaneControl {
     /// The descent's wrench: `descent_force`, and `attitude_hold`'s torque if the loop has
     /// it.
     fn descent(&self, m: &ControlModel, sensed: &Sensed, normal: DVec3) -> Wrench {
-        let d = self.descent.expect("a descent phase has its law");
+        let d = self.summary.descent.expect("a descent phase has its law");
         Wrench {
             force_b_n: descent_force(
                 &d,
