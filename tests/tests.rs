@@ -5,6 +5,7 @@ mod cli;
 mod common;
 mod cpus;
 mod interrupt;
+mod lander;
 mod outcome_rules;
 mod outputs;
 mod plot;

@@ -7,6 +7,7 @@
 //! --release --test tests thrust -- --nocapture` shows every number, passing or not.
 
 use crate::common::Table;
+use crate::lander::{CG_HEIGHT_M, FALL_WITHIN_S, Facing, quiet, regular, sample_of, standing};
 use glam::{DMat3, DQuat, DVec3};
 use kernels::block::Block;
 use kernels::isa::{Isa, Kernel, KernelKind, Precision, WithKernel};
@@ -14,31 +15,12 @@ use touchdown::control::{ControlModel, LaneControl, Truth, attitude_torque};
 use touchdown::reference::step::{Thrust, step, step_size};
 use touchdown::reference::{Model, State, StepReport, Surface, initial_state, run};
 use touchdown::sampling::{self, Sample};
-use touchdown::scenario::{
-    AttitudeReference, Dist, G0_M_S2, Geometry, Inputs, Scenario, Sensors, Target,
-};
+use touchdown::scenario::{Dist, G0_M_S2, Inputs, Scenario, Sensors, Target};
 use touchdown::sweep::{kernel_params, lane_init, lane_thrust};
 
 // ---------------------------------------------------------------------------------------
 // Helpers: inputs, a step driver, thrusts and the results table.
 // ---------------------------------------------------------------------------------------
-
-/// Inputs with every value zero: level ground, no fall, no errors, no rates.
-fn quiet() -> Inputs<f64> {
-    Inputs::from_array([0.0; 12])
-}
-
-/// A hand-made sample on a flat surface.
-fn sample_of(inputs: Inputs<f64>) -> Sample {
-    Sample {
-        index: 0,
-        seed: 0,
-        inputs,
-        terrain_tile: 0,
-        terrain_offset_m: [0.0; 2],
-        law_cell: 0,
-    }
-}
 
 /// Inputs of an attitude (roll, pitch, yaw, deg), an initial velocity and body rates.
 fn posed(attitude_deg: [f64; 3], velocity_m_s: [f64; 3], rates_deg_s: [f64; 3]) -> Inputs<f64> {
@@ -544,29 +526,6 @@ fn thrust_moment_about_a_principal_axis_is_exact() {
 // 2. Hold-down at rest: the legs bear the weight's normal component plus the thrust.
 // ---------------------------------------------------------------------------------------
 
-/// A regular gear with the default CG height.
-fn regular(legs: usize, footpad_radius_m: f64, first_leg_azimuth_deg: f64) -> Geometry {
-    Geometry::Regular {
-        legs,
-        footpad_radius_m,
-        cg_height_m: CG_HEIGHT_M,
-        first_leg_azimuth_deg,
-    }
-}
-
-/// CG height of the default gear above its footpad plane, m (MODEL.md section 3).
-const CG_HEIGHT_M: f64 = 0.428936;
-
-/// A lander standing on a slope: aligned with the surface, lowest footpad on it, at rest.
-fn standing(geometry: Geometry, friction: f64) -> Scenario {
-    let mut s = Scenario::default();
-    s.lander.geometry = geometry;
-    s.surface.friction_coefficient = friction;
-    s.initial.attitude_reference = AttitudeReference::Surface;
-    s.initial.clearance_m = 0.0;
-    s
-}
-
 /// Settling time before each measurement of the hold-down test, s.
 const SETTLE_S: f64 = 10.0;
 
@@ -644,27 +603,6 @@ fn thrust_hold_down_adds_to_the_normal_force() {
 // ---------------------------------------------------------------------------------------
 // 3. Static tipping limit under hold-down thrust.
 // ---------------------------------------------------------------------------------------
-
-/// Which part of the gear faces downhill.
-#[derive(Debug, Clone, Copy)]
-enum Facing {
-    Side,
-    Leg,
-}
-
-impl Facing {
-    /// Downhill azimuth for a gear whose first leg is at `first_leg_deg`, deg.
-    fn azimuth_deg(self, legs: usize, first_leg_deg: f64) -> f64 {
-        match self {
-            Facing::Leg => first_leg_deg,
-            Facing::Side => first_leg_deg + 180.0 / legs as f64,
-        }
-    }
-}
-
-/// Time a lander has to fall over once past the limit, s (as the passive test: the tilt
-/// grows like exp(t / tau), tau ~ 8 s, from ~0.01 rad to past 90 deg).
-const FALL_WITHIN_S: f64 = 400.0;
 
 /// The slope at which a gear pushed by `thrust` along -Z_B through the CG tips: about the
 /// downhill edge, weight (m g0 at height h above the footpad plane, r behind the edge)

@@ -7,58 +7,18 @@
 //! --nocapture` shows every number, passing or not.
 
 use crate::common::Table;
+use crate::lander::{CG_HEIGHT_M, FALL_WITHIN_S, Facing, quiet, regular, sample_of, standing};
 use glam::{DMat3, DVec3};
 use std::f64::consts::PI;
 use touchdown::reference::step::{step, step_size};
 use touchdown::reference::{
     Model, Outcome, State, StepReport, Summary, Surface, initial_state, run,
 };
-use touchdown::sampling::Sample;
 use touchdown::scenario::{AttitudeReference, Geometry, Inputs, PSI_PA, Scenario, Stage};
 
 // ---------------------------------------------------------------------------------------
 // Helpers: inputs, scenarios, a step driver and the results table.
 // ---------------------------------------------------------------------------------------
-
-/// Inputs with every value zero: level ground, no fall, no errors, no rates.
-fn quiet() -> Inputs<f64> {
-    Inputs::from_array([0.0; 12])
-}
-
-/// A hand-made sample on a flat surface.
-fn sample_of(inputs: Inputs<f64>) -> Sample {
-    Sample {
-        index: 0,
-        seed: 0,
-        inputs,
-        terrain_tile: 0,
-        terrain_offset_m: [0.0; 2],
-        law_cell: 0,
-    }
-}
-
-/// A lander standing on a slope: aligned with the surface, lowest footpad on it, at rest.
-fn standing(geometry: Geometry, friction: f64) -> Scenario {
-    let mut s = Scenario::default();
-    s.lander.geometry = geometry;
-    s.surface.friction_coefficient = friction;
-    s.initial.attitude_reference = AttitudeReference::Surface;
-    s.initial.clearance_m = 0.0;
-    s
-}
-
-/// A regular gear with the default CG height.
-fn regular(legs: usize, footpad_radius_m: f64, first_leg_azimuth_deg: f64) -> Geometry {
-    Geometry::Regular {
-        legs,
-        footpad_radius_m,
-        cg_height_m: CG_HEIGHT_M,
-        first_leg_azimuth_deg,
-    }
-}
-
-/// CG height of the default gear above its footpad plane, m (MODEL.md section 3).
-const CG_HEIGHT_M: f64 = 0.428936;
 
 /// Inputs with an initial velocity (in the attitude reference frame) and body rates.
 fn moving(velocity_m_s: [f64; 3], rates_deg_s: [f64; 3]) -> Inputs<f64> {
@@ -510,31 +470,6 @@ fn static_limit_deg(legs: usize, radius_m: f64, first_leg_deg: f64, downhill_deg
     let r = radius_m * (PI / legs as f64).cos() / off.cos();
     (r / CG_HEIGHT_M).atan().to_degrees()
 }
-
-/// Which part of the gear faces downhill.
-#[derive(Debug, Clone, Copy)]
-enum Facing {
-    Side,
-    Leg,
-    Between,
-}
-
-impl Facing {
-    /// Downhill azimuth for a gear whose first leg is at `first_leg_deg`, deg.
-    fn azimuth_deg(self, legs: usize, first_leg_deg: f64) -> f64 {
-        let sector = 360.0 / legs as f64;
-        first_leg_deg
-            + match self {
-                Facing::Leg => 0.0,
-                Facing::Side => sector / 2.0,
-                Facing::Between => sector / 4.0,
-            }
-    }
-}
-
-/// Time a lander has to fall over once past the limit: its tilt grows like exp(t/tau),
-/// tau = sqrt(I_edge / (m g L)) ~ 8 s for these gears, from ~0.01 rad to past 90 deg.
-const FALL_WITHIN_S: f64 = 400.0;
 
 /// The first leg's azimuth of the gears of the tipping tests (arbitrary, not 0).
 fn first_leg_deg(legs: usize) -> f64 {

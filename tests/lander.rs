@@ -1,0 +1,69 @@
+//! Landers and samples made by hand for the closed-form tests (`validation`, `thrust`).
+
+use touchdown::sampling::Sample;
+use touchdown::scenario::{AttitudeReference, Geometry, Inputs, Scenario};
+
+/// Inputs with every value zero: level ground, no fall, no errors, no rates.
+pub(crate) fn quiet() -> Inputs<f64> {
+    Inputs::from_array([0.0; 12])
+}
+
+/// A hand-made sample on a flat surface.
+pub(crate) fn sample_of(inputs: Inputs<f64>) -> Sample {
+    Sample {
+        index: 0,
+        seed: 0,
+        inputs,
+        terrain_tile: 0,
+        terrain_offset_m: [0.0; 2],
+        law_cell: 0,
+    }
+}
+
+/// A lander standing on a slope: aligned with the surface, lowest footpad on it, at rest.
+pub(crate) fn standing(geometry: Geometry, friction: f64) -> Scenario {
+    let mut s = Scenario::default();
+    s.lander.geometry = geometry;
+    s.surface.friction_coefficient = friction;
+    s.initial.attitude_reference = AttitudeReference::Surface;
+    s.initial.clearance_m = 0.0;
+    s
+}
+
+/// A regular gear with the default CG height.
+pub(crate) fn regular(legs: usize, footpad_radius_m: f64, first_leg_azimuth_deg: f64) -> Geometry {
+    Geometry::Regular {
+        legs,
+        footpad_radius_m,
+        cg_height_m: CG_HEIGHT_M,
+        first_leg_azimuth_deg,
+    }
+}
+
+/// CG height of the default gear above its footpad plane, m (MODEL.md section 3).
+pub(crate) const CG_HEIGHT_M: f64 = 0.428936;
+
+/// Which part of the gear faces downhill.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Facing {
+    Side,
+    Leg,
+    Between,
+}
+
+impl Facing {
+    /// Downhill azimuth for a gear whose first leg is at `first_leg_deg`, deg.
+    pub(crate) fn azimuth_deg(self, legs: usize, first_leg_deg: f64) -> f64 {
+        let sector = 360.0 / legs as f64;
+        first_leg_deg
+            + match self {
+                Facing::Leg => 0.0,
+                Facing::Side => sector / 2.0,
+                Facing::Between => sector / 4.0,
+            }
+    }
+}
+
+/// Time a lander has to fall over once past the limit: its tilt grows like exp(t/tau),
+/// tau = sqrt(I_edge / (m g L)) ~ 8 s for these gears, from ~0.01 rad to past 90 deg.
+pub(crate) const FALL_WITHIN_S: f64 = 400.0;
