@@ -43,6 +43,60 @@ pub enum Command {
     /// distributions) or of a trace file (CG and leg time histories, 3D path, shock along
     /// Z_B).
     Plot(PlotArgs),
+    /// Animate a trace file as a GIF: the lander in 3D on its slope, the CG's trail, the
+    /// contact forces and thrust plumes, with time, tilt and outcome.
+    Animate(AnimateArgs),
+    /// Write a trace file as one self-contained HTML page: the lander in 3D (drag to orbit,
+    /// wheel to zoom), a time slider with play and pause, and the histories as charts.
+    View(ViewArgs),
+}
+
+/// Flags of `touchdown animate`.
+#[derive(clap::Args, Debug)]
+pub struct AnimateArgs {
+    /// A trace file (`touchdown trace` writes one).
+    pub trace: PathBuf,
+    /// GIF file to write (default: the trace's name with .gif).
+    #[arg(long, value_name = "PATH")]
+    pub out: Option<PathBuf>,
+    /// Frames per second of playback, 1 to 50.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value = "15",
+        allow_negative_numbers = true
+    )]
+    pub fps: f64,
+    /// Trace seconds per second of playback (default: the trace plays in 15 s, and never
+    /// slower than real time; the last frame then stays 2 s).
+    #[arg(long, value_name = "X", allow_negative_numbers = true)]
+    pub speed: Option<f64>,
+    /// Picture size in pixels, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "640x480", value_parser = parse_size)]
+    pub size: (u32, u32),
+}
+
+/// Flags of `touchdown view`.
+#[derive(clap::Args, Debug)]
+pub struct ViewArgs {
+    /// A trace file (`touchdown trace` writes one).
+    pub trace: PathBuf,
+    /// HTML file to write (default: the trace's name with .html).
+    #[arg(long, value_name = "PATH")]
+    pub out: Option<PathBuf>,
+}
+
+/// Parses a picture size written `640x480`.
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("{s:?} is not a size WIDTHxHEIGHT in pixels (example: 640x480)");
+    let (w, h) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
+    Ok((w.parse().map_err(|_| bad())?, h.parse().map_err(|_| bad())?))
+}
+
+/// The output beside `trace` with `extension`, unless `out` names one.
+fn beside(trace: &Path, out: Option<&PathBuf>, extension: &str) -> PathBuf {
+    out.cloned()
+        .unwrap_or_else(|| trace.with_extension(extension))
 }
 
 /// Flags of `touchdown sweep`.
@@ -282,6 +336,50 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             for p in crate::plot::plot(&args.file, args.out_dir.as_deref())? {
                 print_out(&format!("wrote {}\n", p.display()));
             }
+            Ok(())
+        }
+        Command::Animate(args) => {
+            let out = beside(&args.trace, args.out.as_ref(), "gif");
+            let options = crate::animate::Options {
+                fps: args.fps,
+                speed: args.speed,
+                width: args.size.0,
+                height: args.size.1,
+            };
+            let started = std::time::Instant::now();
+            let r = crate::animate::animate(&args.trace, &out, &options)?;
+            say(
+                &format!(
+                    "{} frames at {} fps, {}x speed: plays in {:.1} s\nwrote {}: {:.2} MB in {:.1} s\n",
+                    r.frames,
+                    args.fps,
+                    if r.speed >= 10.0 {
+                        format!("{:.0}", r.speed)
+                    } else {
+                        format!("{:.2}", r.speed)
+                    },
+                    r.playback_s,
+                    shown(&out),
+                    r.bytes as f64 / 1e6,
+                    started.elapsed().as_secs_f64()
+                ),
+                &out,
+            );
+            Ok(())
+        }
+        Command::View(args) => {
+            let out = beside(&args.trace, args.out.as_ref(), "html");
+            let w = crate::view::view(&args.trace, &out)?;
+            say(
+                &format!(
+                    "{} times of {} rows\nwrote {}: {:.2} MB\n",
+                    w.times,
+                    w.rows,
+                    shown(&out),
+                    w.bytes as f64 / 1e6
+                ),
+                &out,
+            );
             Ok(())
         }
         Command::Merge(args) => {

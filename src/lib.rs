@@ -3,6 +3,7 @@
 //! `scenario` reads and validates the inputs, `sampling` turns a sample index into inputs,
 //! `reference` is the scalar physics of one lander, `output` writes Arrow files.
 
+pub mod animate;
 pub mod cli;
 pub mod compare;
 pub mod control;
@@ -12,6 +13,8 @@ pub mod reference;
 pub mod report;
 pub mod sampling;
 pub mod scenario;
+pub mod scene;
 pub mod stability;
 pub mod sweep;
 pub mod terrain;
+pub mod view;

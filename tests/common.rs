@@ -17,6 +17,19 @@ pub(crate) const SHORT: &str = "[simulation]\nt_max_s = 20.0\n";
 /// The short scenario with a three-leg lander.
 pub(crate) const THREE_LEGS: &str = "[lander]\nlegs = 3\n\n[simulation]\nt_max_s = 20.0\n";
 
+/// `[inputs]` lines of a lander set down rather than dropped: no fall, no velocity,
+/// attitude or rate errors.
+pub(crate) const SET_DOWN: &str = "release_height_m = 0.0
+velocity_error_x_m_s = 0.0
+velocity_error_y_m_s = 0.0
+velocity_error_z_m_s = 0.0
+roll_deg = 0.0
+pitch_deg = 0.0
+rate_x_deg_s = 0.0
+rate_y_deg_s = 0.0
+rate_z_deg_s = 0.0
+";
+
 /// A fresh, empty folder for one test.
 pub(crate) struct TempDir(PathBuf);
 

@@ -1,6 +1,7 @@
 //! All integration tests, in one binary (one link instead of many).
 
 mod agreement;
+mod animate;
 mod cli;
 mod common;
 mod cpus;

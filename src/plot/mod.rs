@@ -20,14 +20,14 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 /// The font family every picture uses (registered from the embedded DejaVu Sans).
-const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 
 /// A drawing area of a picture being drawn.
 type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
 
 /// Colours of the outcomes, in the order of `Outcome::ALL` (stable, tipped, sliding,
 /// bouncing, diverged): green, red, orange, blue, black.
-const OUTCOME_COLOURS: [RGBColor; 5] = [
+pub(crate) const OUTCOME_COLOURS: [RGBColor; 5] = [
     RGBColor(44, 160, 44),
     RGBColor(214, 39, 40),
     RGBColor(255, 127, 14),
@@ -48,7 +48,7 @@ const SERIES_COLOURS: [RGBColor; 8] = [
 ];
 
 /// Registers the embedded font once per process.
-fn register_font() -> anyhow::Result<()> {
+pub(crate) fn register_font() -> anyhow::Result<()> {
     static DONE: OnceLock<bool> = OnceLock::new();
     let ok = *DONE.get_or_init(|| {
         plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular()).is_ok()
@@ -88,25 +88,25 @@ fn save_png(
 }
 
 /// A drawing error as an `anyhow` error.
-fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
+pub(crate) fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
     anyhow!("cannot draw the picture: {e}")
 }
 
 /// Columns of a touchdown file, as `f64` (nulls as NaN), with the schema metadata, the
 /// outcome column (as indices into `Outcome::ALL`) when the file has one, and the other
 /// text columns (a trace's control phase).
-struct Table {
-    meta: HashMap<String, String>,
-    columns: HashMap<String, Vec<f64>>,
-    outcome: Vec<u8>,
-    texts: HashMap<String, Vec<String>>,
-    rows: usize,
+pub(crate) struct Table {
+    pub(crate) meta: HashMap<String, String>,
+    pub(crate) columns: HashMap<String, Vec<f64>>,
+    pub(crate) outcome: Vec<u8>,
+    pub(crate) texts: HashMap<String, Vec<String>>,
+    pub(crate) rows: usize,
 }
 
 impl Table {
     /// Reads the numeric and text columns `wanted` keeps (and the outcome column) of the
     /// file at `path`.
-    fn read(path: &Path, wanted: impl Fn(&str) -> bool) -> anyhow::Result<Table> {
+    pub(crate) fn read(path: &Path, wanted: impl Fn(&str) -> bool) -> anyhow::Result<Table> {
         let format = format_of(path)?;
         let (schema, batches) = open(path, format)?;
         let meta: HashMap<String, String> = schema
@@ -166,7 +166,7 @@ impl Table {
     }
 
     /// A column by name, or an error naming the file and the column.
-    fn column(&self, name: &str, path: &Path) -> anyhow::Result<&[f64]> {
+    pub(crate) fn column(&self, name: &str, path: &Path) -> anyhow::Result<&[f64]> {
         self.columns
             .get(name)
             .map(Vec::as_slice)

@@ -1,0 +1,316 @@
+//! `touchdown view`: one self-contained HTML page of a trace, with the lander in 3D (orbit,
+//! zoom), a time slider with play and pause, and the CG's and legs' histories in small
+//! charts whose cursor follows the slider.
+//!
+//! The page is `viewer.html` with the trace spliced in as JSON: nothing is fetched, so it
+//! opens from a mail attachment or a folder with no network. A long trace is resampled to
+//! `MAX_TIMES` times; the forces and thrusts keep their peak over each interval, so no
+//! impact or firing falls between two of them.
+
+use crate::output::AtomicFile;
+use crate::scene::Scene;
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::Path;
+
+/// The page, with `PLACEHOLDER` where the trace goes.
+const TEMPLATE: &str = include_str!("viewer.html");
+const PLACEHOLDER: &str = "\"__TOUCHDOWN_TRACE_JSON__\"";
+
+/// Most times a page holds.
+pub const MAX_TIMES: usize = 4000;
+
+/// What `view` wrote.
+#[derive(Debug, Clone, Copy)]
+pub struct Written {
+    pub times: usize,
+    pub rows: usize,
+    pub bytes: u64,
+}
+
+/// Writes the page of the trace at `trace` to `out`.
+pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
+    crate::output::check_output_path(out)?;
+    let scene = Scene::read(trace)?;
+    let (json, times) = trace_json(&scene);
+    let page = TEMPLATE.replacen(PLACEHOLDER, &json.replace("</", "<\\/"), 1);
+    let (file, mut sink) = AtomicFile::create(out)?;
+    sink.write_all(page.as_bytes())
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", out.display()))?;
+    file.commit(sink)?;
+    Ok(Written {
+        times,
+        rows: scene.time.len(),
+        bytes: page.len() as u64,
+    })
+}
+
+/// A number as JSON: f32 precision (the page draws it), `null` when not finite.
+fn num(out: &mut String, v: f64) {
+    if v.is_finite() {
+        let _ = write!(out, "{}", v as f32);
+    } else {
+        out.push_str("null");
+    }
+}
+
+fn vec3(out: &mut String, v: glam::DVec3) {
+    out.push('[');
+    for (k, x) in v.to_array().into_iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        num(out, x);
+    }
+    out.push(']');
+}
+
+/// A string as JSON.
+fn text(out: &mut String, s: &str) {
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+}
+
+fn numbers(out: &mut String, values: impl IntoIterator<Item = f64>) {
+    out.push('[');
+    for (k, v) in values.into_iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        num(out, v);
+    }
+    out.push(']');
+}
+
+/// The trace as the page reads it (its keys are the page's contract); returns it and the
+/// number of times it holds.
+fn trace_json(scene: &Scene) -> (String, usize) {
+    let (t0, t1) = scene.span_s();
+    // Every row of a short trace; a long one at MAX_TIMES evenly spaced times.
+    let times: Vec<f64> = if scene.time.len() <= MAX_TIMES {
+        scene.time.clone()
+    } else {
+        (0..MAX_TIMES)
+            .map(|k| t0 + (t1 - t0) * k as f64 / (MAX_TIMES - 1) as f64)
+            .collect()
+    };
+    let resampled = scene.time.len() > MAX_TIMES;
+    let sk = &scene.sketch;
+    let mut o = String::with_capacity(times.len() * 64 * 10);
+    o.push('{');
+    o.push_str("\"title\":");
+    text(&mut o, &scene.about);
+    o.push_str(",\"outcome\":");
+    text(&mut o, &scene.outcome);
+    o.push_str(",\"decided_s\":");
+    num(&mut o, scene.decided_s);
+    o.push_str(",\"slope_deg\":");
+    num(&mut o, scene.slope_deg);
+    o.push_str(",\"downhill_azimuth_deg\":");
+    num(&mut o, scene.downhill_azimuth_deg);
+    o.push_str(",\"normal\":");
+    vec3(&mut o, scene.surface.normal);
+    o.push_str(",\"body\":{\"bottom\":[");
+    for (k, p) in sk.bottom.iter().enumerate() {
+        if k > 0 {
+            o.push(',');
+        }
+        vec3(&mut o, *p);
+    }
+    o.push_str("],\"top\":[");
+    for (k, p) in sk.top.iter().enumerate() {
+        if k > 0 {
+            o.push(',');
+        }
+        vec3(&mut o, *p);
+    }
+    o.push_str("]},\"legs\":[");
+    for (k, l) in sk.legs.iter().enumerate() {
+        if k > 0 {
+            o.push(',');
+        }
+        o.push_str("{\"hip\":");
+        vec3(&mut o, l.hip);
+        o.push_str(",\"mount\":");
+        vec3(&mut o, l.mount);
+        o.push_str(",\"tip0\":");
+        vec3(&mut o, l.tip0);
+        o.push_str(",\"axis\":");
+        vec3(&mut o, l.axis);
+        o.push('}');
+    }
+    o.push_str("],\"footpad_radius_m\":");
+    num(&mut o, sk.footpad_radius_m);
+    o.push_str(",\"thrusters\":[");
+    for (j, t) in sk.thrusters.iter().enumerate() {
+        if j > 0 {
+            o.push(',');
+        }
+        o.push_str("{\"position\":");
+        vec3(&mut o, t.position);
+        o.push_str(",\"direction\":");
+        vec3(&mut o, t.direction);
+        o.push_str(",\"max_thrust_n\":");
+        num(&mut o, t.max_thrust_n);
+        o.push('}');
+    }
+    let g = scene.ground(2.0 * sk.reach_m() + 1.0, 0.1, 40_000);
+    let g = if g.heights.is_none() {
+        scene.ground(2.0 * sk.reach_m() + 1.0, 0.5, 40_000)
+    } else {
+        g
+    };
+    o.push_str("],\"ground\":{\"origin\":");
+    vec3(&mut o, g.origin);
+    o.push_str(",\"u\":");
+    vec3(&mut o, g.u);
+    o.push_str(",\"v\":");
+    vec3(&mut o, g.v);
+    o.push_str(",\"spacing_m\":");
+    num(&mut o, g.spacing_m);
+    let _ = write!(o, ",\"nu\":{},\"nv\":{},\"heights\":", g.nu, g.nv);
+    match &g.heights {
+        Some(h) => numbers(&mut o, h.iter().copied()),
+        None => o.push_str("null"),
+    }
+    o.push_str("},\"time\":");
+    numbers(&mut o, times.iter().copied());
+
+    // The state columns between rows; the forces and thrusts at their peak since the
+    // previous time (when resampled).
+    let mut state: Vec<String> = [
+        "x_m", "y_m", "z_m", "vx_m_s", "vy_m_s", "vz_m_s", "qw", "qx", "qy", "qz",
+    ]
+    .map(String::from)
+    .to_vec();
+    let mut peaks: Vec<String> = Vec::new();
+    for k in 0..scene.legs {
+        for c in ["tip_x_m", "tip_y_m", "tip_z_m", "stroke_m", "penetration_m"] {
+            state.push(format!("leg{k}_{c}"));
+        }
+        for c in ["normal_force_n", "friction_force_n"] {
+            peaks.push(format!("leg{k}_{c}"));
+        }
+    }
+    for j in 0..scene.thrusters {
+        peaks.push(format!("thruster{j}_thrust_n"));
+    }
+    o.push_str(",\"series\":{");
+    let mut first = true;
+    let mut key = |o: &mut String, name: &str| {
+        if !first {
+            o.push(',');
+        }
+        first = false;
+        text(o, name);
+        o.push(':');
+    };
+    for name in &state {
+        key(&mut o, name);
+        numbers(&mut o, times.iter().map(|t| scene.value(name, *t)));
+    }
+    for name in &peaks {
+        key(&mut o, name);
+        numbers(
+            &mut o,
+            times.iter().enumerate().map(|(k, t)| {
+                let since = if resampled && k > 0 { times[k - 1] } else { *t };
+                scene.peak_between(name, since, *t)
+            }),
+        );
+    }
+    key(&mut o, "tilt_deg");
+    numbers(&mut o, times.iter().map(|t| scene.pose(*t, *t).tilt_deg));
+    o.push_str("},\"phase\":");
+    match scene.phases() {
+        Some(_) => {
+            o.push('[');
+            for (k, t) in times.iter().enumerate() {
+                if k > 0 {
+                    o.push(',');
+                }
+                text(&mut o, scene.pose(*t, *t).phase.as_deref().unwrap_or(""));
+            }
+            o.push(']');
+        }
+        None => o.push_str("null"),
+    }
+
+    // The charts under the view.
+    o.push_str(",\"charts\":[");
+    let chart = |o: &mut String, title: &str, lines: &[(String, String, f64)]| {
+        o.push_str("{\"title\":");
+        text(o, title);
+        o.push_str(",\"lines\":[");
+        for (k, (label, series, scale)) in lines.iter().enumerate() {
+            if k > 0 {
+                o.push(',');
+            }
+            o.push_str("{\"label\":");
+            text(o, label);
+            o.push_str(",\"series\":");
+            text(o, series);
+            o.push_str(",\"scale\":");
+            num(o, *scale);
+            o.push('}');
+        }
+        o.push_str("]}");
+    };
+    let per_leg = |c: &str, scale: f64| -> Vec<(String, String, f64)> {
+        (0..scene.legs)
+            .map(|k| (format!("leg {k}"), format!("leg{k}_{c}"), scale))
+            .collect()
+    };
+    let xyz = |prefix: &str, suffix: &str| -> Vec<(String, String, f64)> {
+        ["x", "y", "z"]
+            .iter()
+            .map(|a| (a.to_string(), format!("{prefix}{a}{suffix}"), 1.0))
+            .collect()
+    };
+    chart(&mut o, "CG position (m)", &xyz("", "_m"));
+    o.push(',');
+    chart(&mut o, "CG velocity (m/s)", &xyz("v", "_m_s"));
+    o.push(',');
+    chart(
+        &mut o,
+        "tilt from the slope normal (deg)",
+        &[("tilt".to_string(), "tilt_deg".to_string(), 1.0)],
+    );
+    o.push(',');
+    chart(
+        &mut o,
+        "normal force per leg (N)",
+        &per_leg("normal_force_n", 1.0),
+    );
+    o.push(',');
+    chart(
+        &mut o,
+        "damper stroke per leg (mm)",
+        &per_leg("stroke_m", 1000.0),
+    );
+    if scene.thrusters > 0 {
+        o.push(',');
+        let lines: Vec<(String, String, f64)> = (0..scene.thrusters)
+            .map(|j| {
+                (
+                    format!("thruster {j}"),
+                    format!("thruster{j}_thrust_n"),
+                    1.0,
+                )
+            })
+            .collect();
+        chart(&mut o, "thrust per thruster (N)", &lines);
+    }
+    o.push_str("]}");
+    (o, times.len())
+}
