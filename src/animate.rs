@@ -32,6 +32,9 @@ pub struct Options {
 /// Playback that a trace takes by default, s.
 pub const DEFAULT_PLAYBACK_S: f64 = 15.0;
 
+/// Most frames an animation has (at 15 fps, 11 minutes of playback).
+pub const MAX_FRAMES: usize = 10_000;
+
 /// How long the last frame stays before the loop starts again, in 1/100 s.
 pub const FINAL_HOLD_CS: u16 = 200;
 
@@ -42,12 +45,18 @@ pub fn default_speed(duration_s: f64) -> f64 {
     (duration_s / DEFAULT_PLAYBACK_S).max(1.0)
 }
 
-/// The times of the frames of a trace from `t0` to `t1` played at `speed` and `fps`: one
-/// every `speed / fps` trace seconds, the last at `t1`.
+/// The number of frames of a trace from `t0` to `t1` played at `speed` and `fps`: one every
+/// `speed / fps` trace seconds from `t0`, and one at `t1`.
+#[must_use]
+pub fn frame_count(t0: f64, t1: f64, speed: f64, fps: f64) -> f64 {
+    ((t1 - t0) * fps / speed - 1e-9).ceil().max(0.0) + 1.0
+}
+
+/// The times of the frames (`frame_count` of them, at most `MAX_FRAMES`).
 #[must_use]
 pub fn frame_times(t0: f64, t1: f64, speed: f64, fps: f64) -> Vec<f64> {
     let step = speed / fps;
-    let frames = ((t1 - t0) / step - 1e-9).ceil().max(0.0) as usize + 1;
+    let frames = frame_count(t0, t1, speed, fps).min(MAX_FRAMES as f64) as usize;
     (0..frames)
         .map(|k| (t0 + k as f64 * step).min(t1))
         .collect()
@@ -75,6 +84,8 @@ pub struct Rendered {
     /// Playback of one loop, the final hold included, s.
     pub playback_s: f64,
     pub bytes: u64,
+    /// The trace's rows are every `every` steps.
+    pub every: u64,
 }
 
 /// Checks the options: a clear message for each wrong one.
@@ -105,10 +116,21 @@ pub fn check(o: &Options) -> anyhow::Result<()> {
 pub fn animate(trace: &Path, out: &Path, o: &Options) -> anyhow::Result<Rendered> {
     check(o)?;
     crate::output::check_output_path(out)?;
+    crate::scene::refuse_overwriting(trace, out)?;
     let scene = Scene::read(trace)?;
     register_font()?;
     let (t0, t1) = scene.span_s();
     let speed = o.speed.unwrap_or_else(|| default_speed(t1 - t0));
+    let frames = frame_count(t0, t1, speed, o.fps);
+    if frames > MAX_FRAMES as f64 {
+        bail!(
+            "--speed {speed} at --fps {}: {frames:.0} frames for the {:.3} s of {}, more than \
+             {MAX_FRAMES}; a larger --speed or a smaller --fps",
+            o.fps,
+            t1 - t0,
+            trace.display()
+        );
+    }
     let times = frame_times(t0, t1, speed, o.fps);
     let (w, h) = (o.width as usize, o.height as usize);
     let view = View::new(&scene, o.width, o.height);
@@ -159,6 +181,7 @@ pub fn animate(trace: &Path, out: &Path, o: &Options) -> anyhow::Result<Rendered
             speed,
             playback_s: playback_cs as f64 / 100.0,
             bytes,
+            every: scene.every,
         })
     }
 }
@@ -488,7 +511,7 @@ impl<'a> View<'a> {
             if glide.is_none() {
                 let d = cg(k) - c.target;
                 if d.is_finite() && (d.dot(self.right).abs() > bx || d.dot(self.up).abs() > by) {
-                    let to = cg(k + GLIDE_FRAMES);
+                    let to = cg(k + GLIDE_FRAMES - 1);
                     let to = if to.is_finite() { to } else { cg(k) };
                     glide = Some((c.target, to, k));
                 }
@@ -702,7 +725,7 @@ impl<'a> View<'a> {
         for face in faces {
             let w: Vec<DVec3> = face.iter().map(|p| world(*p)).collect();
             let normal = (w[1] - w[0]).cross(w[2] - w[0]).normalize_or_zero();
-            if normal.dot(self.back) <= 0.0 {
+            if !normal.is_finite() || normal.dot(self.back) <= 0.0 {
                 continue;
             }
             let pts: Vec<(f64, f64, f64)> = w.iter().map(|p| self.project(c, *p)).collect();
@@ -785,9 +808,10 @@ impl<'a> View<'a> {
             .map_err(drawing)
         };
         let pad = (big * 0.5) as i32;
-        // The captions on a veil, so that the trail or ground under them does not hide them.
+        // The captions on a veil, so that the trail or ground under them does not hide them;
+        // wide enough for the longest second line (the same in every frame).
         let veil = (
-            2 * pad + (big * 0.55 * s.about.len().max(56) as f64) as i32,
+            2 * pad + (0.55 * (big * s.about.len() as f64).max(small * 90.0)) as i32,
             pad + (big * 2.6) as i32,
         );
         root.draw(&Rectangle::new(
@@ -800,6 +824,18 @@ impl<'a> View<'a> {
             "t = {:.2} s    tilt {:.1} deg    slope {:.1} deg",
             pose.t_s, pose.tilt_deg, s.slope_deg
         );
+        // The lowest footpad's height above the surface along its normal, while it is clear
+        // of it (a descent starts metres up, far above the ground the picture shows).
+        let n = s.surface.normal;
+        let height = pose
+            .tips
+            .iter()
+            .filter(|t| t.is_finite())
+            .map(|t| n.dot(*t) - self.ground_height(*t))
+            .fold(f64::INFINITY, f64::min);
+        if height.is_finite() && height >= 0.01 {
+            line.push_str(&format!("    {height:.2} m off the slope"));
+        }
         if let Some(p) = pose.phase.as_deref().filter(|p| !p.is_empty()) {
             line.push_str(&format!("    {p}"));
         }
@@ -1005,6 +1041,13 @@ mod tests {
         let d: Vec<u16> = (0..20).map(|k| frame_delay_cs(k, 100, 15.0)).collect();
         assert_eq!(d.iter().map(|x| u32::from(*x)).sum::<u32>(), 133);
         assert!(d.iter().all(|x| *x == 6 || *x == 7));
+    }
+
+    #[test]
+    fn the_palette_leaves_the_transparent_index_free() {
+        let p = Palette::new();
+        assert_eq!(p.rgb.len(), 256 * 3);
+        assert!(p.lookup.iter().all(|i| *i != TRANSPARENT));
     }
 
     #[test]

@@ -348,6 +348,9 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             };
             let started = std::time::Instant::now();
             let r = crate::animate::animate(&args.trace, &out, &options)?;
+            if let Some(note) = crate::scene::sparse_note(&args.trace, r.every) {
+                eprintln!("{note}");
+            }
             say(
                 &format!(
                     "{} frames at {} fps, {}x speed: plays in {:.1} s\nwrote {}: {:.2} MB in {:.1} s\n",
@@ -370,6 +373,9 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::View(args) => {
             let out = beside(&args.trace, args.out.as_ref(), "html");
             let w = crate::view::view(&args.trace, &out)?;
+            if let Some(note) = crate::scene::sparse_note(&args.trace, w.every) {
+                eprintln!("{note}");
+            }
             say(
                 &format!(
                     "{} times of {} rows\nwrote {}: {:.2} MB\n",

@@ -179,6 +179,30 @@ impl Ground {
     }
 }
 
+/// Refuses an output `out` that is the trace file `trace` itself (a picture written over
+/// the data it shows).
+pub fn refuse_overwriting(trace: &Path, out: &Path) -> anyhow::Result<()> {
+    if let (Ok(a), Ok(b)) = (std::fs::canonicalize(trace), std::fs::canonicalize(out))
+        && a == b
+    {
+        bail!("--out {}: that is the trace file being read", out.display());
+    }
+    Ok(())
+}
+
+/// What a trace of every N steps leaves out, for a note to its user.
+#[must_use]
+pub fn sparse_note(trace: &Path, every: u64) -> Option<String> {
+    (every > 1).then(|| {
+        format!(
+            "touchdown: note: {} holds one row every {every} steps (trace --every {every}): \
+             the motion between rows is interpolated, and forces and firings between rows do \
+             not show",
+            trace.display()
+        )
+    })
+}
+
 /// A trace file ready to be drawn.
 pub struct Scene {
     /// "sample N of seed S: OUTCOME at T s".
@@ -193,8 +217,13 @@ pub struct Scene {
     pub time: Vec<f64>,
     pub legs: usize,
     pub thrusters: usize,
+    /// The trace's rows are every `every` steps (`touchdown trace --every`).
+    pub every: u64,
     table: Table,
 }
+
+/// Most nodes of a ground patch along either side.
+const MAX_SIDE_NODES: usize = 2000;
 
 /// The columns every trace has that a picture needs.
 const BODY_COLUMNS: [&str; 8] = ["t_s", "x_m", "y_m", "z_m", "qw", "qx", "qy", "qz"];
@@ -226,6 +255,14 @@ impl Scene {
         }
         for c in BODY_COLUMNS {
             table.column(c, path)?;
+        }
+        if let Some((name, c)) = table.columns.iter().find(|(_, c)| c.len() != table.rows) {
+            bail!(
+                "{}: column {name} has {} values in {} rows",
+                path.display(),
+                c.len(),
+                table.rows
+            );
         }
         let meta = |k: &str| -> anyhow::Result<&String> {
             table
@@ -276,6 +313,10 @@ impl Scene {
         if time.iter().any(|t| !t.is_finite()) || time.windows(2).any(|w| w[1] < w[0]) {
             bail!("{}: its times do not increase", path.display());
         }
+        let every = meta("touchdown.every")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(1);
         let outcome = meta("touchdown.outcome")?.clone();
         let decided_s = number("touchdown.decided_s")?;
         Ok(Scene {
@@ -293,6 +334,7 @@ impl Scene {
             time,
             legs,
             thrusters,
+            every,
             table,
         })
     }
@@ -367,8 +409,9 @@ impl Scene {
             DVec3::new(self.at(x, here), self.at(y, here), self.at(z, here))
         };
         let cg = v("x_m", "y_m", "z_m");
-        // Between rows: the attitude by normalised linear interpolation (rows are at most
-        // one flight step apart, over which the lander turns little).
+        // Between rows: the attitude by normalised linear interpolation (rows of a trace
+        // written at every step are at most one flight step apart, over which the lander
+        // turns little; a trace of every N steps is smoothed over more).
         let q = |i: usize| {
             let c = |n: &str| self.column(n)[i];
             DQuat::from_xyzw(c("qx"), c("qy"), c("qz"), c("qw"))
@@ -442,27 +485,30 @@ impl Scene {
     }
 
     /// The surface under the CG's path and `margin_m` around it, with nodes `spacing_m`
-    /// apart (wider where the patch would pass `max_nodes` nodes).
+    /// apart (wider where the patch would pass `max_nodes` nodes, or `MAX_SIDE_NODES` along
+    /// a side). Rows whose CG is not finite (a diverged sample's last) are left out.
     #[must_use]
     pub fn ground(&self, margin_m: f64, spacing_m: f64, max_nodes: usize) -> Ground {
         let s = &self.surface;
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in self.cg_path() {
+        let (mut lo, mut hi) = ([-margin_m; 2], [margin_m; 2]);
+        let mut first = true;
+        for p in self.cg_path().into_iter().filter(|p| p.is_finite()) {
             for (k, axis) in [s.tangent_u, s.tangent_v].iter().enumerate() {
                 let c = axis.dot(p);
-                lo[k] = lo[k].min(c - margin_m);
-                hi[k] = hi[k].max(c + margin_m);
+                if first {
+                    (lo[k], hi[k]) = (c - margin_m, c + margin_m);
+                } else {
+                    lo[k] = lo[k].min(c - margin_m);
+                    hi[k] = hi[k].max(c + margin_m);
+                }
             }
+            first = false;
         }
+        let side = |k: usize, spacing: f64| (hi[k] - lo[k]) / spacing + 2.0;
         let mut spacing = spacing_m;
-        let count = |spacing: f64| {
-            let n = |k: usize| ((hi[k] - lo[k]) / spacing).ceil() as usize + 1;
-            (n(0), n(1))
-        };
-        while {
-            let (nu, nv) = count(spacing);
-            nu * nv > max_nodes
-        } {
+        while side(0, spacing) * side(1, spacing) > max_nodes as f64
+            || side(0, spacing).max(side(1, spacing)) > MAX_SIDE_NODES as f64
+        {
             spacing *= 2.0;
         }
         // Nodes on whole multiples of the spacing, so that grid lines fall on whole metres.

@@ -5,7 +5,7 @@
 //! The page is `viewer.html` with the trace spliced in as JSON: nothing is fetched, so it
 //! opens from a mail attachment or a folder with no network. A long trace is resampled to
 //! `MAX_TIMES` times; the forces and thrusts keep their peak over each interval, so no
-//! impact or firing falls between two of them.
+//! impact or firing in the trace's rows falls between two of them.
 
 use crate::output::AtomicFile;
 use crate::scene::Scene;
@@ -26,11 +26,14 @@ pub struct Written {
     pub times: usize,
     pub rows: usize,
     pub bytes: u64,
+    /// The trace's rows are every `every` steps.
+    pub every: u64,
 }
 
 /// Writes the page of the trace at `trace` to `out`.
 pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
     crate::output::check_output_path(out)?;
+    crate::scene::refuse_overwriting(trace, out)?;
     let scene = Scene::read(trace)?;
     let (json, times) = trace_json(&scene);
     let page = TEMPLATE.replacen(PLACEHOLDER, &json.replace("</", "<\\/"), 1);
@@ -42,6 +45,7 @@ pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
         times,
         rows: scene.time.len(),
         bytes: page.len() as u64,
+        every: scene.every,
     })
 }
 
