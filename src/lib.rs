@@ -14,6 +14,7 @@ pub mod report;
 pub mod sampling;
 pub mod scenario;
 pub mod scene;
+pub mod sensitivity;
 pub mod stability;
 pub mod sweep;
 pub mod terrain;
