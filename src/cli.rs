@@ -36,6 +36,10 @@ pub enum Command {
     /// wherever the scenarios draw an input alike): outcome shares, their differences with
     /// 95 % intervals, and which samples changed outcome (Markdown on stdout).
     Compare(CompareArgs),
+    /// Sobol sensitivity indices of every input drawn at random, for P(stable), P(tipped),
+    /// peak CG acceleration and longest damper stroke, from a sweep run with
+    /// `design = "sobol-indices"` (Markdown on stdout).
+    Sensitivity(SensitivityArgs),
     /// Join the shard files of one sweep (`sweep --shard K/N`) into the file the sweep
     /// writes when run in one process.
     Merge(MergeArgs),
@@ -74,6 +78,16 @@ pub struct AnimateArgs {
     /// Picture size in pixels, WIDTHxHEIGHT.
     #[arg(long, value_name = "WxH", default_value = "640x480", value_parser = parse_size)]
     pub size: (u32, u32),
+}
+
+/// Flags of `touchdown sensitivity`.
+#[derive(clap::Args, Debug)]
+pub struct SensitivityArgs {
+    /// A sweep or shard file (Arrow or Parquet) run with `design = "sobol-indices"`.
+    pub sweep: PathBuf,
+    /// Bootstrap replicates behind the 95 % intervals.
+    #[arg(long, value_name = "B", default_value = "1000", value_parser = parse_count, allow_negative_numbers = true)]
+    pub bootstrap: u64,
 }
 
 /// Flags of `touchdown view`.
@@ -326,6 +340,11 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Sweep(args) => run_sweep(&args),
         Command::Report(args) => {
             print_out(&crate::report::report(&args.sweep)?);
+            Ok(())
+        }
+        Command::Sensitivity(args) => {
+            let bootstrap = usize::try_from(args.bootstrap).unwrap_or(usize::MAX);
+            print_out(&crate::sensitivity::report(&args.sweep, bootstrap)?);
             Ok(())
         }
         Command::Compare(args) => {

@@ -449,7 +449,7 @@ impl Thrust {
 }
 
 /// A Float64 column of a batch, by name.
-fn float_column<'a>(
+pub(crate) fn float_column<'a>(
     b: &'a RecordBatch,
     name: &str,
     path: &Path,

@@ -11,7 +11,7 @@
 //! differ in the last bit between CPUs with and without FMA: a sample's inputs are the same
 //! bits on every machine.
 
-use crate::scenario::{Control, Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, Scenario};
+use crate::scenario::{Control, Design, Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, Scenario};
 use rand_core::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -257,7 +257,48 @@ pub fn grid_size(scenario: &Scenario) -> u128 {
         .product()
 }
 
+/// The inputs that a Sobol-index design varies: those drawn from a distribution (not fixed),
+/// as positions in `INPUT_FIELDS`.
+#[must_use]
+pub fn design_inputs(scenario: &Scenario) -> Vec<usize> {
+    scenario
+        .inputs
+        .to_array()
+        .iter()
+        .enumerate()
+        .filter(|(_, d)| !matches!(d, Dist::Fixed(_)))
+        .map(|(k, _)| k)
+        .collect()
+}
+
+/// The number of cells of the grid of the control laws' parameters (1: none on a grid).
+#[must_use]
+pub fn law_grid_size(control: Option<&Control>) -> u64 {
+    law_dists(control)
+        .iter()
+        .map(|d| match d {
+            Dist::Grid { count, .. } => *count,
+            _ => 1,
+        })
+        .product()
+}
+
+/// Where sample `index` sits in a Sobol-index design of `inputs` varied inputs: its base
+/// point and its matrix (0: A, 1: B, `2 + q`: AB_q, A with varied input `q` from B).
+#[must_use]
+pub fn design_position(index: u64, inputs: usize) -> (u64, usize) {
+    let block = inputs as u64 + 2;
+    (index / block, (index % block) as usize)
+}
+
 /// The inputs of sample `index` of `scenario`.
+///
+/// With `design = "sobol-indices"` (Saltelli's design), samples come in blocks of `d + 2`
+/// for the `d` inputs drawn at random (`design_inputs`): block `j` is base point `j`, whose
+/// rows A and B are the independent draws `2 j` and `2 j + 1`, followed by AB_1 ... AB_d,
+/// each A with one varied input taken from B. The rows AB_q keep A's sample seed, terrain
+/// tile and offset, so whatever else a sample draws (sensor noise, thruster errors) is A's
+/// too: only input `q` differs between A and AB_q. `design_position` gives a sample's place.
 ///
 /// Common random numbers: each input draws one uniform from its own stream (`stream`, keyed
 /// by the sample's seed and the input's name) and maps it through its inverse CDF. So two
@@ -266,6 +307,32 @@ pub fn grid_size(scenario: &Scenario) -> u128 {
 /// input simply leaves its stream unused.
 #[must_use]
 pub fn sample(scenario: &Scenario, index: u64) -> Sample {
+    if scenario.design == Design::SobolIndices {
+        let varied = design_inputs(scenario);
+        let (base, matrix) = design_position(index, varied.len());
+        let a = drawn(scenario, 2 * base);
+        let b = drawn(scenario, 2 * base + 1);
+        let mut s = match matrix {
+            0 => a,
+            1 => b,
+            m => {
+                let mut values = a.inputs.to_array();
+                let k = varied[m - 2];
+                values[k] = b.inputs.to_array()[k];
+                Sample {
+                    inputs: Inputs::from_array(values),
+                    ..a
+                }
+            }
+        };
+        s.index = index;
+        return s;
+    }
+    drawn(scenario, index)
+}
+
+/// The independent draw `index` of `scenario`'s inputs.
+fn drawn(scenario: &Scenario, index: u64) -> Sample {
     let seed = sample_seed(scenario.seed, index);
     let dists = scenario.inputs.to_array();
     let grid = grid_indices(&grid_dists(scenario), index);
@@ -290,17 +357,7 @@ pub fn sample(scenario: &Scenario, index: u64) -> Sample {
         inputs: Inputs::from_array(values),
         terrain_tile,
         terrain_offset_m,
-        law_cell: {
-            let laws = law_dists(scenario.control.as_ref());
-            let size: u64 = laws
-                .iter()
-                .map(|d| match d {
-                    Dist::Grid { count, .. } => *count,
-                    _ => 1,
-                })
-                .product();
-            index % size
-        },
+        law_cell: index % law_grid_size(scenario.control.as_ref()),
     }
 }
 

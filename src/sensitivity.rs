@@ -263,6 +263,145 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
     sorted[below] + (position - below as f64) * (sorted[above] - sorted[below])
 }
 
+/// `touchdown sensitivity`: the first-order and total indices of every varied input for
+/// P(stable), P(tipped), the peak CG acceleration and the longest damper stroke, from a
+/// sweep (or shard) run with `design = "sobol-indices"`, as Markdown. Blocks of the design
+/// that the file does not hold whole (a shard's first and last) are left out.
+pub fn report(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<String> {
+    use crate::scenario::{Design, INPUT_FIELDS, Scenario};
+    use anyhow::{anyhow, bail};
+    use arrow_array::{Array as _, StringArray, UInt64Array};
+    use std::fmt::Write as _;
+
+    let (schema, batches) = crate::output::read::open_sweep(path)?;
+    let meta = schema.metadata();
+    let text = meta
+        .get("touchdown.scenario")
+        .ok_or_else(|| anyhow!("{}: no touchdown.scenario in its metadata", path.display()))?;
+    let mut scenario = Scenario::from_toml(text)
+        .map_err(|e| anyhow!("the scenario stored in {}: {e}", path.display()))?;
+    if let Some(seed) = meta.get("touchdown.seed").and_then(|s| s.parse().ok()) {
+        scenario.seed = seed;
+    }
+    if scenario.design != Design::SobolIndices {
+        bail!(
+            "{} was not run with design = \"sobol-indices\" (a top-level key of the scenario): \
+             its samples are independent draws, from which no Sobol index can be estimated",
+            path.display()
+        );
+    }
+    if bootstrap == 0 || bootstrap > 100_000 {
+        bail!("--bootstrap {bootstrap}: from 1 to 100000 replicates");
+    }
+    let varied = crate::sampling::design_inputs(&scenario);
+    let d = varied.len();
+    let legs = schema
+        .fields()
+        .iter()
+        .filter(|f| f.name().ends_with("_peak_normal_force_n"))
+        .count();
+    // Per base point, the four outputs of its d + 2 rows (NaN until seen).
+    const OUTPUTS: [&str; 4] = [
+        "P(stable)",
+        "P(tipped)",
+        "peak CG acceleration (m/s^2)",
+        "longest damper stroke (mm)",
+    ];
+    let mut blocks: std::collections::BTreeMap<u64, Vec<[f64; 4]>> = Default::default();
+    let mut rows = 0u64;
+    for b in batches {
+        let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
+        let sample = b
+            .column_by_name("sample")
+            .and_then(|c| c.as_any().downcast_ref::<UInt64Array>())
+            .ok_or_else(|| anyhow!("{}: no sample column", path.display()))?;
+        let outcome = b
+            .column_by_name("outcome")
+            .and_then(|c| c.as_any().downcast_ref::<StringArray>())
+            .ok_or_else(|| anyhow!("{}: no outcome column", path.display()))?;
+        let acc = crate::report::float_column(&b, "peak_acceleration_m_s2", path)?;
+        let strokes = (0..legs)
+            .map(|k| crate::report::float_column(&b, &format!("leg{k}_stroke_m"), path))
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        for i in 0..b.num_rows() {
+            rows += 1;
+            let (base, matrix) = crate::sampling::design_position(sample.value(i), d);
+            let o = outcome.value(i);
+            let stroke = strokes.iter().map(|c| c.value(i)).fold(0.0, f64::max);
+            let block = blocks
+                .entry(base)
+                .or_insert_with(|| vec![[f64::NAN; 4]; d + 2]);
+            block[matrix] = [
+                f64::from(u8::from(o == "stable")),
+                f64::from(u8::from(o == "tipped")),
+                acc.value(i),
+                1e3 * stroke,
+            ];
+        }
+    }
+    let whole: Vec<&Vec<[f64; 4]>> = blocks
+        .values()
+        .filter(|b| b.iter().all(|r| r.iter().all(|v| v.is_finite())))
+        .collect();
+    let n = whole.len();
+    if n < 2 {
+        bail!(
+            "{} holds {n} whole base points of the design ({rows} samples; a base point is {} \
+             samples): at least 2 are needed, and hundreds for useful intervals",
+            path.display(),
+            d + 2
+        );
+    }
+    let mut t = String::new();
+    let _ = writeln!(t, "# touchdown sensitivity: {}\n", path.display());
+    let _ = writeln!(
+        t,
+        "{n} base points of Saltelli's design ({} samples each: A, B and one AB_i per varied \
+         input; {rows} samples in the file), seed {}. First-order indices S_i (Saltelli 2010: \
+         the share of the variance an input explains alone) and total indices ST_i (Jansen \
+         1999: with all its interactions), with 95 % bootstrap intervals from {bootstrap} \
+         replicates. Inputs not listed are fixed in the scenario.\n",
+        d + 2,
+        scenario.seed
+    );
+    for (o, name) in OUTPUTS.iter().enumerate() {
+        let col = |m: usize| -> Vec<f64> { whole.iter().map(|b| b[m][o]).collect() };
+        let (a, bb) = (col(0), col(1));
+        let ab: Vec<Vec<f64>> = (0..d).map(|q| col(2 + q)).collect();
+        let mean = (a.iter().sum::<f64>() + bb.iter().sum::<f64>()) / (2 * n) as f64;
+        let _ = writeln!(t, "## {name}: mean {mean:.4} over A and B\n");
+        match indices(
+            &Outputs {
+                a: &a,
+                b: &bb,
+                ab: &ab,
+            },
+            bootstrap,
+            scenario.seed,
+        )? {
+            None => {
+                let _ = writeln!(t, "No variance: every sample gives {mean}.\n");
+            }
+            Some(ix) => {
+                let _ = writeln!(
+                    t,
+                    "| input | S_i | 95 % interval | ST_i | 95 % interval |\n|---|---:|---:|---:|---:|"
+                );
+                for (q, &k) in varied.iter().enumerate() {
+                    let (f, tt) = (ix.first[q], ix.total[q]);
+                    let _ = writeln!(
+                        t,
+                        "| {} | {:.3} | {:.3} to {:.3} | {:.3} | {:.3} to {:.3} |",
+                        INPUT_FIELDS[k].0, f.estimate, f.low, f.high, tt.estimate, tt.low, tt.high
+                    );
+                }
+                let _ = writeln!(t);
+            }
+        }
+    }
+    Ok(t)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -14,6 +14,7 @@ mod python_example;
 mod report;
 mod scenario_fuzz;
 mod scenarios;
+mod sensitivity;
 mod shards;
 mod studies;
 mod sweep_cli;

@@ -91,10 +91,22 @@ impl fmt::Display for ScenarioError {
 
 impl std::error::Error for ScenarioError {}
 
+/// How the samples of a sweep draw their inputs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Design {
+    /// Every sample draws every input independently (the default).
+    Independent,
+    /// Saltelli's design for Sobol sensitivity indices: with `d` inputs drawn at random,
+    /// blocks of `d + 2` samples share a base point; see `sampling::sample`.
+    SobolIndices,
+}
+
 /// A complete, validated scenario.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scenario {
     pub seed: u64,
+    /// How samples draw their inputs.
+    pub design: Design,
     /// Samples a sweep runs when the command line does not say.
     pub samples: u64,
     pub gravity_m_s2: f64,
@@ -122,6 +134,7 @@ impl Default for Scenario {
         };
         Scenario {
             seed: 1,
+            design: Design::Independent,
             samples: 1000,
             gravity_m_s2: 0.0168,
             lander: Lander {
@@ -275,6 +288,10 @@ impl Scenario {
         let d = Scenario::default();
         let mut top = Reader::new("", table);
         let seed = top.integer("seed", d.seed as i64, 0, i64::MAX)? as u64;
+        let design = match top.word("design", "independent", &["independent", "sobol-indices"])? {
+            "sobol-indices" => Design::SobolIndices,
+            _ => Design::Independent,
+        };
         let samples = top.integer("samples", d.samples as i64, 1, i64::MAX)? as u64;
         let gravity_m_s2 = top.non_negative("gravity_m_s2", d.gravity_m_s2)?;
         let lander = read_lander(&mut top, &d.lander)?;
@@ -290,6 +307,7 @@ impl Scenario {
         top.finish()?;
         let s = Scenario {
             seed,
+            design,
             samples,
             gravity_m_s2,
             lander,
@@ -305,8 +323,52 @@ impl Scenario {
         };
         s.check_leg_counts()?;
         s.check_can_land()?;
+        s.check_design()?;
         crate::control::check(&s)?;
         Ok(s)
+    }
+
+    /// Refuses a design that cannot run: the Sobol-index design needs inputs drawn at random
+    /// (fixed ones carry no variance to share out) and no grid (a grid is not random).
+    fn check_design(&self) -> Result<(), ScenarioError> {
+        if self.design != Design::SobolIndices {
+            return Ok(());
+        }
+        let invalid = |value: String, allowed: &str| ScenarioError::Invalid {
+            key: "design".to_string(),
+            value,
+            allowed: allowed.to_string(),
+        };
+        let dists = self.inputs.to_array();
+        if let Some((name, _)) = INPUT_FIELDS
+            .iter()
+            .zip(&dists)
+            .find(|(_, d)| matches!(d, Dist::Grid { .. }))
+        {
+            return Err(invalid(
+                "\"sobol-indices\"".to_string(),
+                &format!(
+                    "inputs drawn at random: inputs.{} is a grid (give it a uniform \
+                     distribution over the same range)",
+                    name.0
+                ),
+            ));
+        }
+        let laws = crate::sampling::law_grid_size(self.control.as_ref());
+        if laws > 1 {
+            return Err(invalid(
+                "\"sobol-indices\"".to_string(),
+                "control law parameters drawn at random, not on a grid",
+            ));
+        }
+        if crate::sampling::design_inputs(self).is_empty() {
+            return Err(invalid(
+                "\"sobol-indices\"".to_string(),
+                "at least one input drawn from a distribution (every input is fixed: there \
+                 is no variance to share out)",
+            ));
+        }
+        Ok(())
     }
 
     /// Number of legs of the lander.
