@@ -88,6 +88,9 @@ pub struct SensitivityArgs {
     /// Bootstrap replicates behind the 95 % intervals.
     #[arg(long, value_name = "B", default_value = "1000", value_parser = parse_count, allow_negative_numbers = true)]
     pub bootstrap: u64,
+    /// Also draw the indices as a bar chart, to this PNG file.
+    #[arg(long, value_name = "PATH")]
+    pub png: Option<PathBuf>,
 }
 
 /// Flags of `touchdown view`.
@@ -125,6 +128,11 @@ pub struct SweepArgs {
     /// Seed of the sweep (overrides the scenario's `seed`).
     #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
+    /// How samples draw their inputs (overrides the scenario's `design`): independent,
+    /// sobol-sequence (quasi-random), or sobol-indices (Saltelli's design, for
+    /// `touchdown sensitivity`).
+    #[arg(long, value_name = "DESIGN", value_parser = ["independent", "sobol-sequence", "sobol-indices"])]
+    pub design: Option<String>,
     /// Worker threads (default: all cores).
     #[arg(long, value_name = "T", value_parser = parse_threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
@@ -145,7 +153,7 @@ pub struct SweepArgs {
     #[arg(
         long,
         value_name = "PATH",
-        conflicts_with_all = ["scenario", "samples", "seed", "out", "format", "shard"]
+        conflicts_with_all = ["scenario", "samples", "seed", "design", "out", "format", "shard"]
     )]
     pub resume: Option<PathBuf>,
     /// Run only the K-th of N contiguous slices of the samples (K from 0 to N-1, as a Slurm
@@ -344,7 +352,26 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Sensitivity(args) => {
             let bootstrap = usize::try_from(args.bootstrap).unwrap_or(usize::MAX);
-            print_out(&crate::sensitivity::report(&args.sweep, bootstrap)?);
+            if let Some(png) = &args.png {
+                crate::output::check_output_path(png)?;
+                if let (Ok(a), Ok(b)) = (
+                    std::fs::canonicalize(png),
+                    std::fs::canonicalize(&args.sweep),
+                ) && a == b
+                {
+                    anyhow::bail!("--png {}: that is the sweep file being read", png.display());
+                }
+            }
+            let analysis = crate::sensitivity::analyse(&args.sweep, bootstrap)?;
+            if let Some(png) = &args.png {
+                let title = format!(
+                    "Sobol indices of {} ({} base points)",
+                    args.sweep.display(),
+                    analysis.base_points
+                );
+                crate::plot::sensitivity_chart(png, &analysis, &title)?;
+            }
+            print_out(&crate::sensitivity::markdown(&args.sweep, &analysis));
             Ok(())
         }
         Command::Compare(args) => {
@@ -584,6 +611,23 @@ impl SweepPlan {
         }
         crate::output::check_output_path(&args.out)?;
         let (scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+        // The design as the command line asks, checked as a scenario that says so is, and
+        // stored with the scenario's text (`sensitivity` reads it there).
+        let (scenario, text) = match args.design.as_deref() {
+            None => (scenario, text),
+            Some(word) => {
+                let design = match word {
+                    "sobol-indices" => crate::scenario::Design::SobolIndices,
+                    "sobol-sequence" => crate::scenario::Design::SobolSequence,
+                    _ => crate::scenario::Design::Independent,
+                };
+                let text = crate::scenario::with_design(&text, design);
+                let mut again = Scenario::from_toml(&text)
+                    .map_err(|e| anyhow::anyhow!("--design {word}: {e}"))?;
+                again.seed = scenario.seed;
+                (again, text)
+            }
+        };
         let samples = args.samples.unwrap_or(scenario.samples);
         if samples == 0 {
             anyhow::bail!("--samples must be at least 1");
@@ -651,6 +695,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         )
     });
     let control = crate::output::sweep::control_columns(scenario);
+    let parameters = crate::output::sweep::parameter_columns(scenario);
     let info = SweepInfo {
         scenario_toml: &plan.text,
         seed: scenario.seed,
@@ -658,6 +703,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         lane_type: plan.kernel.arithmetic(),
         shard: plan.shard,
         control: &control,
+        parameters: &parameters,
     };
     let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?;
     eprintln!(
@@ -805,6 +851,15 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
     );
     for ((name, unit), value) in INPUT_FIELDS.iter().zip(sample.inputs.to_array()) {
         t.push_str(&format!("  {name:<24} {value:>12.6} {unit}\n"));
+    }
+    for ((name, unit), p) in crate::scenario::PARAMETER_FIELDS
+        .iter()
+        .zip(crate::scenario::Parameter::ALL)
+    {
+        if scenario.sampled[p as usize].is_some() {
+            let value = sample.parameters[p as usize];
+            t.push_str(&format!("  {name:<24} {value:>12.6} {unit} (drawn)\n"));
+        }
     }
     if scenario.surface.roughness.rms_height_m > 0.0 {
         t.push_str(&format!(

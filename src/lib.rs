@@ -9,6 +9,7 @@ pub mod compare;
 pub mod control;
 pub mod output;
 pub mod plot;
+pub mod qmc;
 pub mod reference;
 pub mod report;
 pub mod sampling;

@@ -11,7 +11,10 @@
 //! differ in the last bit between CPUs with and without FMA: a sample's inputs are the same
 //! bits on every machine.
 
-use crate::scenario::{Control, Design, Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, Scenario};
+use crate::scenario::{
+    Control, Design, Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETER_FIELDS, PARAMETERS,
+    Parameter, Scenario,
+};
 use rand_core::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -22,6 +25,9 @@ pub struct Sample {
     /// The seed of this sample's generator.
     pub seed: u64,
     pub inputs: Inputs<f64>,
+    /// The value of each scenario parameter (`Parameter`) for this sample: its draw where
+    /// the scenario samples it, else the scenario's value.
+    pub parameters: [f64; PARAMETERS],
     /// Which precomputed terrain tile this sample lands on (0 on a flat surface).
     pub terrain_tile: u32,
     /// Offset of the landing point in the tile, along the slope's tangent axes, m.
@@ -30,6 +36,60 @@ pub struct Sample {
     /// grid; `law_grid` gives each parameter's coordinate): their values are drawn with the
     /// control loop.
     pub law_cell: u64,
+}
+
+/// Number of values a sample draws: the inputs (`INPUT_FIELDS`), then the parameters
+/// (`PARAMETER_FIELDS`).
+pub const VALUES: usize = INPUT_FIELDS.len() + PARAMETERS;
+
+// The quasi-random design gives every value a dimension of the Sobol sequence.
+const _: () = assert!(VALUES <= crate::qmc::MAX_DIMENSIONS);
+
+/// The column name of value `k` of a sample (`Sample::values`).
+#[must_use]
+pub fn value_name(k: usize) -> &'static str {
+    if k < INPUT_FIELDS.len() {
+        INPUT_FIELDS[k].0
+    } else {
+        PARAMETER_FIELDS[k - INPUT_FIELDS.len()].0
+    }
+}
+
+impl Sample {
+    /// The inputs, then the parameters.
+    #[must_use]
+    pub fn values(&self) -> [f64; VALUES] {
+        let inputs = self.inputs.to_array();
+        std::array::from_fn(|k| {
+            if k < inputs.len() {
+                inputs[k]
+            } else {
+                self.parameters[k - inputs.len()]
+            }
+        })
+    }
+
+    /// Sets the inputs and parameters from `values` (as `values` gives them).
+    pub fn set_values(&mut self, values: [f64; VALUES]) {
+        let n = INPUT_FIELDS.len();
+        self.inputs = Inputs::from_array(std::array::from_fn(|k| values[k]));
+        self.parameters = std::array::from_fn(|k| values[n + k]);
+    }
+}
+
+/// The distribution of each value of `scenario`'s samples (`Sample::values`): a parameter
+/// that the scenario does not sample is fixed at its value.
+#[must_use]
+pub fn value_dists(scenario: &Scenario) -> [Dist; VALUES] {
+    let inputs = scenario.inputs.to_array();
+    std::array::from_fn(|k| {
+        if k < inputs.len() {
+            inputs[k]
+        } else {
+            let p = Parameter::ALL[k - inputs.len()];
+            scenario.sampled[p as usize].unwrap_or(Dist::Fixed(scenario.parameter(p)))
+        }
+    })
 }
 
 /// SplitMix64's output function: a bijective mix of 64 bits.
@@ -223,16 +283,16 @@ fn law_dists(control: Option<&Control>) -> [Dist; LAW_PARAMETERS] {
         .map(|d| d.unwrap_or(Dist::Fixed(0.0)))
 }
 
-/// The distributions on the grid of `scenario`: its inputs, then its control laws'
-/// parameters, which therefore vary fastest.
-fn grid_dists(scenario: &Scenario) -> [Dist; INPUT_FIELDS.len() + LAW_PARAMETERS] {
-    let inputs = scenario.inputs.to_array();
+/// The distributions on the grid of `scenario`: its inputs and parameters, then its
+/// control laws' parameters, which therefore vary fastest.
+fn grid_dists(scenario: &Scenario) -> [Dist; VALUES + LAW_PARAMETERS] {
+    let values = value_dists(scenario);
     let laws = law_dists(scenario.control.as_ref());
     std::array::from_fn(|k| {
-        if k < inputs.len() {
-            inputs[k]
+        if k < values.len() {
+            values[k]
         } else {
-            laws[k - inputs.len()]
+            laws[k - values.len()]
         }
     })
 }
@@ -257,13 +317,11 @@ pub fn grid_size(scenario: &Scenario) -> u128 {
         .product()
 }
 
-/// The inputs that a Sobol-index design varies: those drawn from a distribution (not fixed),
-/// as positions in `INPUT_FIELDS`.
+/// The inputs and parameters that a Sobol-index design varies: those drawn from a
+/// distribution (not fixed), as positions in `Sample::values` (`value_name` names them).
 #[must_use]
 pub fn design_inputs(scenario: &Scenario) -> Vec<usize> {
-    scenario
-        .inputs
-        .to_array()
+    value_dists(scenario)
         .iter()
         .enumerate()
         .filter(|(_, d)| !matches!(d, Dist::Fixed(_)))
@@ -316,13 +374,12 @@ pub fn sample(scenario: &Scenario, index: u64) -> Sample {
             0 => a,
             1 => b,
             m => {
-                let mut values = a.inputs.to_array();
+                let mut values = a.values();
                 let k = varied[m - 2];
-                values[k] = b.inputs.to_array()[k];
-                Sample {
-                    inputs: Inputs::from_array(values),
-                    ..a
-                }
+                values[k] = b.values()[k];
+                let mut ab = a;
+                ab.set_values(values);
+                ab
             }
         };
         s.index = index;
@@ -331,14 +388,30 @@ pub fn sample(scenario: &Scenario, index: u64) -> Sample {
     drawn(scenario, index)
 }
 
-/// The independent draw `index` of `scenario`'s inputs.
+/// Mixed into the sweep's seed for the scrambling of the Sobol sequence.
+const SOBOL_KEY: u64 = 0x5eed_0f50_b01d_5e9a;
+
+/// The independent draw `index` of `scenario`'s inputs (with the quasi-random design, the
+/// inputs drawn from a distribution from point `index` of the Sobol sequence).
 fn drawn(scenario: &Scenario, index: u64) -> Sample {
     let seed = sample_seed(scenario.seed, index);
-    let dists = scenario.inputs.to_array();
+    let dists = value_dists(scenario);
     let grid = grid_indices(&grid_dists(scenario), index);
-    let mut values = [0.0; INPUT_FIELDS.len()];
-    for (((v, d), g), (name, _)) in values.iter_mut().zip(&dists).zip(grid).zip(INPUT_FIELDS) {
-        *v = quantile(d, uniform_open01(&mut stream(seed, name)), g);
+    let mut values = [0.0; VALUES];
+    // With the quasi-random design, the q-th value drawn from a distribution takes
+    // coordinate q of point `index` of the scrambled Sobol sequence.
+    let mut dimension = 0;
+    for (k, ((v, d), g)) in values.iter_mut().zip(&dists).zip(grid).enumerate() {
+        // A fixed value draws nothing: its stream is left alone.
+        *v = match d {
+            Dist::Fixed(x) => *x,
+            d if scenario.design == Design::SobolSequence => {
+                let u = crate::qmc::sobol_point(index, dimension, scenario.seed ^ SOBOL_KEY);
+                dimension += 1;
+                quantile(d, u, g)
+            }
+            d => quantile(d, uniform_open01(&mut stream(seed, value_name(k))), g),
+        };
     }
     let rough = &scenario.surface.roughness;
     let (terrain_tile, terrain_offset_m) = if rough.rms_height_m > 0.0 {
@@ -351,14 +424,17 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
     } else {
         (0, [0.0, 0.0])
     };
-    Sample {
+    let mut s = Sample {
         index,
         seed,
-        inputs: Inputs::from_array(values),
+        inputs: Inputs::from_array([0.0; INPUT_FIELDS.len()]),
+        parameters: [0.0; PARAMETERS],
         terrain_tile,
         terrain_offset_m,
         law_cell: index % law_grid_size(scenario.control.as_ref()),
-    }
+    };
+    s.set_values(values);
+    s
 }
 
 #[cfg(test)]

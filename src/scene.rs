@@ -294,7 +294,8 @@ impl Scene {
         drawn.inputs.slope_deg = slope_deg;
         drawn.inputs.downhill_azimuth_deg = downhill_azimuth_deg;
         let surface = Surface::of(&drawn);
-        let model = Model::new(&scenario);
+        // With the sample's own parameters (a drawn CG height moves the footpads).
+        let model = Model::new(&scenario).for_sample(&drawn).into_owned();
         let sketch = Sketch::of(&model);
         let legs = (0..)
             .take_while(|k| table.columns.contains_key(&format!("leg{k}_tip_x_m")))

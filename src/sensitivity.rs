@@ -263,15 +263,43 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
     sorted[below] + (position - below as f64) * (sorted[above] - sorted[below])
 }
 
+/// The outputs whose indices `touchdown sensitivity` gives.
+pub const OUTPUTS: [&str; 4] = [
+    "P(stable)",
+    "P(tipped)",
+    "peak CG acceleration (m/s^2)",
+    "longest damper stroke (mm)",
+];
+
+/// The indices of a sweep run with Saltelli's design (`analyse`).
+pub struct Analysis {
+    /// The column names of the varied inputs and parameters, in the design's order.
+    pub names: Vec<&'static str>,
+    /// Per output of `OUTPUTS`: the mean over A and B, and the indices (`None`: no
+    /// variance).
+    pub outputs: Vec<(f64, Option<Indices>)>,
+    /// Whole base points of the design used.
+    pub base_points: usize,
+    /// Rows in the file.
+    pub rows: u64,
+    pub seed: u64,
+    pub bootstrap: usize,
+}
+
 /// `touchdown sensitivity`: the first-order and total indices of every varied input for
 /// P(stable), P(tipped), the peak CG acceleration and the longest damper stroke, from a
-/// sweep (or shard) run with `design = "sobol-indices"`, as Markdown. Blocks of the design
-/// that the file does not hold whole (a shard's first and last) are left out.
+/// sweep (or shard) run with `design = "sobol-indices"`, as Markdown.
 pub fn report(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<String> {
-    use crate::scenario::{Design, INPUT_FIELDS, Scenario};
+    Ok(markdown(path, &analyse(path, bootstrap)?))
+}
+
+/// The indices of the sweep (or shard) at `path`, run with `design = "sobol-indices"`.
+/// Blocks of the design that the file does not hold whole (a shard's first and last) are
+/// left out.
+pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analysis> {
+    use crate::scenario::{Design, Scenario};
     use anyhow::{anyhow, bail};
     use arrow_array::{Array as _, StringArray, UInt64Array};
-    use std::fmt::Write as _;
 
     let (schema, batches) = crate::output::read::open_sweep(path)?;
     let meta = schema.metadata();
@@ -301,12 +329,6 @@ pub fn report(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<String
         .filter(|f| f.name().ends_with("_peak_normal_force_n"))
         .count();
     // Per base point, the four outputs of its d + 2 rows (NaN until seen).
-    const OUTPUTS: [&str; 4] = [
-        "P(stable)",
-        "P(tipped)",
-        "peak CG acceleration (m/s^2)",
-        "longest damper stroke (mm)",
-    ];
     let mut blocks: std::collections::BTreeMap<u64, Vec<[f64; 4]>> = Default::default();
     let mut rows = 0u64;
     for b in batches {
@@ -352,25 +374,13 @@ pub fn report(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<String
             d + 2
         );
     }
-    let mut t = String::new();
-    let _ = writeln!(t, "# touchdown sensitivity: {}\n", path.display());
-    let _ = writeln!(
-        t,
-        "{n} base points of Saltelli's design ({} samples each: A, B and one AB_i per varied \
-         input; {rows} samples in the file), seed {}. First-order indices S_i (Saltelli 2010: \
-         the share of the variance an input explains alone) and total indices ST_i (Jansen \
-         1999: with all its interactions), with 95 % bootstrap intervals from {bootstrap} \
-         replicates. Inputs not listed are fixed in the scenario.\n",
-        d + 2,
-        scenario.seed
-    );
-    for (o, name) in OUTPUTS.iter().enumerate() {
+    let mut outputs = Vec::new();
+    for o in 0..OUTPUTS.len() {
         let col = |m: usize| -> Vec<f64> { whole.iter().map(|b| b[m][o]).collect() };
         let (a, bb) = (col(0), col(1));
         let ab: Vec<Vec<f64>> = (0..d).map(|q| col(2 + q)).collect();
         let mean = (a.iter().sum::<f64>() + bb.iter().sum::<f64>()) / (2 * n) as f64;
-        let _ = writeln!(t, "## {name}: mean {mean:.4} over A and B\n");
-        match indices(
+        let ix = indices(
             &Outputs {
                 a: &a,
                 b: &bb,
@@ -378,7 +388,48 @@ pub fn report(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<String
             },
             bootstrap,
             scenario.seed,
-        )? {
+        )?;
+        outputs.push((mean, ix));
+    }
+    Ok(Analysis {
+        names: varied
+            .iter()
+            .map(|&k| crate::sampling::value_name(k))
+            .collect(),
+        outputs,
+        base_points: n,
+        rows,
+        seed: scenario.seed,
+        bootstrap,
+    })
+}
+
+/// The Markdown report of `analysis` of the sweep at `path`.
+#[must_use]
+pub fn markdown(path: &std::path::Path, analysis: &Analysis) -> String {
+    use std::fmt::Write as _;
+    let Analysis {
+        names,
+        outputs,
+        base_points: n,
+        rows,
+        seed,
+        bootstrap,
+    } = analysis;
+    let mut t = String::new();
+    let _ = writeln!(t, "# touchdown sensitivity: {}\n", path.display());
+    let _ = writeln!(
+        t,
+        "{n} base points of Saltelli's design ({} samples each: A, B and one AB_i per varied \
+         input; {rows} samples in the file), seed {seed}. First-order indices S_i (Saltelli \
+         2010: the share of the variance an input explains alone) and total indices ST_i \
+         (Jansen 1999: with all its interactions), with 95 % bootstrap intervals from \
+         {bootstrap} replicates. Inputs not listed are fixed in the scenario.\n",
+        names.len() + 2,
+    );
+    for (name, (mean, ix)) in OUTPUTS.iter().zip(outputs) {
+        let _ = writeln!(t, "## {name}: mean {mean:.4} over A and B\n");
+        match ix {
             None => {
                 let _ = writeln!(t, "No variance: every sample gives {mean}.\n");
             }
@@ -387,19 +438,19 @@ pub fn report(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<String
                     t,
                     "| input | S_i | 95 % interval | ST_i | 95 % interval |\n|---|---:|---:|---:|---:|"
                 );
-                for (q, &k) in varied.iter().enumerate() {
+                for (q, input) in names.iter().enumerate() {
                     let (f, tt) = (ix.first[q], ix.total[q]);
                     let _ = writeln!(
                         t,
-                        "| {} | {:.3} | {:.3} to {:.3} | {:.3} | {:.3} to {:.3} |",
-                        INPUT_FIELDS[k].0, f.estimate, f.low, f.high, tt.estimate, tt.low, tt.high
+                        "| {input} | {:.3} | {:.3} to {:.3} | {:.3} | {:.3} to {:.3} |",
+                        f.estimate, f.low, f.high, tt.estimate, tt.low, tt.high
                     );
                 }
                 let _ = writeln!(t);
             }
         }
     }
-    Ok(t)
+    t
 }
 
 #[cfg(test)]

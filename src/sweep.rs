@@ -159,11 +159,12 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
     }
 }
 
-/// The initial state of a sample, as a lane takes it (the reference's `initial_state`).
+/// The initial state of a sample, as a lane takes it (the reference's `initial_state`, with
+/// the sample's own parameters: `Model::for_sample`).
 #[must_use]
 pub fn lane_init(model: &Model, sample: &Sample) -> LaneInit {
     let surface = Surface::of(sample);
-    let s = initial_state(model, &surface, sample);
+    let s = initial_state(&model.for_sample(sample), &surface, sample);
     LaneInit {
         position_m: s.body.position_m.to_array(),
         velocity_m_s: s.body.velocity_m_s.to_array(),
@@ -255,6 +256,9 @@ struct Padded<T>(T);
 #[repr(align(128))]
 struct Worker<L: Lane> {
     block: Block<L>,
+    /// The parameters of each lane's sample, where the scenario draws parameters per sample
+    /// (`Scenario::sampled`); otherwise the block steps with the sweep's, shared by all.
+    own: Option<Params<L>>,
     /// The sample of each lane (the first `L::LANES` used).
     samples: [Option<Sample>; MAX_LANES],
     /// The control loop of each lane's sample (scenarios with one).
@@ -295,9 +299,10 @@ impl Feed<'_> {
 }
 
 impl<K: Kernel> Worker<K> {
-    fn new(params: &Params<K>) -> Worker<K> {
+    fn new(params: &Params<K>, per_sample: bool) -> Worker<K> {
         Worker {
             block: Block::new(params),
+            own: per_sample.then(|| params.clone()),
             samples: [None; MAX_LANES],
             control: std::array::from_fn(|_| None),
         }
@@ -307,6 +312,9 @@ impl<K: Kernel> Worker<K> {
     fn refill(&mut self, scenario: &Scenario, model: &Model, feed: &Feed, i: usize) {
         if let Some(index) = feed.take() {
             let s = sampling::sample(scenario, index);
+            if let Some(own) = &mut self.own {
+                own.copy_lane(i, &kernel_params(&model.for_sample(&s)));
+            }
             self.block.load(i, &lane_init(model, &s));
             self.samples[i] = Some(s);
             if let Some(m) = &model.control {
@@ -410,6 +418,7 @@ impl<K: Kernel> Worker<K> {
             }
             // The lanes change only between calls (a decision stops the kernel), so `busy`
             // holds for every step of one.
+            let params = self.own.as_ref().unwrap_or(params);
             let advanced = K::advance(params, &mut self.block, STEPS_PER_CALL);
             stats.busy_lane_steps += busy * u64::from(advanced.steps);
             stats.lane_steps += K::LANES as u64 * u64::from(advanced.steps);
@@ -530,7 +539,10 @@ impl<F: FnMut(Vec<Row>) -> anyhow::Result<()>> WithKernel for Sweep<'_, F> {
         let params = &params.0;
         let threads = rayon::current_num_threads();
         let window = chunk.max(1) * 4 * threads as u64;
-        let mut workers: Vec<Worker<K>> = (0..threads).map(|_| Worker::new(params)).collect();
+        let per_sample = scenario.sampled.iter().any(Option::is_some);
+        let mut workers: Vec<Worker<K>> = (0..threads)
+            .map(|_| Worker::new(params, per_sample))
+            .collect();
         let next = Padded(AtomicU64::new(range.start));
         let next = &next.0;
         let mut carried: Vec<Row> = Vec::new();

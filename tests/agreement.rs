@@ -261,6 +261,21 @@ fn kernels_agree_with_the_reference() {
             1000,
         ),
         (
+            // Every parameter that may be drawn per sample drawn: each lane steps with its
+            // own mass, footpads, contact law and crush strength.
+            "mass, CG height, contact law and crush strength drawn",
+            scenario(
+                "[lander]\nmass_kg = { dist = \"uniform\", min = 70.0, max = 130.0 }\n\
+                 cg_height_m = { dist = \"uniform\", min = 0.33, max = 0.53 }\n\
+                 [surface]\nstiffness_n_per_m = { dist = \"uniform\", min = 1.0e4, max = 1.0e5 }\n\
+                 damping_n_s_per_m = { dist = \"uniform\", min = 0.0, max = 2000.0 }\n\
+                 friction_coefficient = { dist = \"uniform\", min = 0.2, max = 1.0 }\n\
+                 [damper]\nenabled = true\n\
+                 crush_strength_psi = { dist = \"uniform\", min = 2.0, max = 60.0 }",
+            ),
+            1000,
+        ),
+        (
             // Stiff contact, slopes past the friction angle: the early `sliding` and
             // `bouncing` rules fire (in about 8 % of the samples).
             "MuJoCo-matched",

@@ -129,6 +129,24 @@ pub(crate) fn touchdown(dir: &Path, args: &[&str]) -> Run {
     }
 }
 
+/// Column `name` of the Arrow file at `path`, as `f64` (`None` if it has no such column).
+pub(crate) fn arrow_column(path: &Path, name: &str) -> Option<Vec<f64>> {
+    use arrow_array::Array as _;
+    let file = std::fs::File::open(path).expect("open the file");
+    let reader = arrow_ipc::reader::FileReader::try_new(file, None).expect("an Arrow file");
+    let mut out = Vec::new();
+    for b in reader {
+        let b = b.expect("a batch");
+        let c = b.column_by_name(name)?;
+        let c = c
+            .as_any()
+            .downcast_ref::<arrow_array::Float64Array>()
+            .expect("Float64");
+        out.extend((0..c.len()).map(|i| c.value(i)));
+    }
+    Some(out)
+}
+
 pub(crate) fn read_bytes(path: &Path) -> Vec<u8> {
     std::fs::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
 }

@@ -8,12 +8,15 @@ pub(crate) fn quiet() -> Inputs<f64> {
     Inputs::from_array([0.0; 12])
 }
 
-/// A hand-made sample on a flat surface.
+/// A hand-made sample on a flat surface (the parameters, which no scenario of these tests
+/// draws, at the default scenario's values).
 pub(crate) fn sample_of(inputs: Inputs<f64>) -> Sample {
+    let default = Scenario::default();
     Sample {
         index: 0,
         seed: 0,
         inputs,
+        parameters: touchdown::scenario::Parameter::ALL.map(|p| default.parameter(p)),
         terrain_tile: 0,
         terrain_offset_m: [0.0; 2],
         law_cell: 0,

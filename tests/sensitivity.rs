@@ -2,8 +2,7 @@
 //! it: the rows of each block are A, B and A with one input from B; the indices rank the
 //! inputs as the statics of the gear says they must; bad use is refused.
 
-use crate::common::{SET_DOWN, TempDir, touchdown};
-use arrow_array::{Array as _, Float64Array};
+use crate::common::{SET_DOWN, TempDir, arrow_column, touchdown};
 
 /// Landers set down (no fall, no errors) at any yaw on slopes of 0-70 deg, past the default
 /// gear's static limit (44.7 deg with a side downhill, 54.4 with a leg downhill, MODEL.md
@@ -25,16 +24,7 @@ fn design() -> String {
 
 /// Column `name` of a sweep file.
 fn column(path: &std::path::Path, name: &str) -> Vec<f64> {
-    let file = std::fs::File::open(path).expect("open the sweep");
-    let reader = arrow_ipc::reader::FileReader::try_new(file, None).expect("an Arrow file");
-    let mut out = Vec::new();
-    for b in reader {
-        let b = b.expect("a batch");
-        let c = b.column_by_name(name).expect("the column");
-        let c = c.as_any().downcast_ref::<Float64Array>().expect("Float64");
-        out.extend((0..c.len()).map(|i| c.value(i)));
-    }
-    out
+    arrow_column(path, name).expect("the column")
 }
 
 #[test]
@@ -79,9 +69,23 @@ fn the_design_varies_one_input_per_row_and_the_indices_rank_slope_first() {
     }
     let run = touchdown(
         dir.path(),
-        &["sensitivity", "d.arrow", "--bootstrap", "300"],
+        &[
+            "sensitivity",
+            "d.arrow",
+            "--bootstrap",
+            "300",
+            "--png",
+            "d.png",
+        ],
     );
     run.assert_ok();
+    // The bar chart: 4 panels of 3 inputs, each with a blue (first-order) and an orange
+    // (total) bar; the slope's bars are long, so both colours cover many pixels.
+    let png = image::open(dir.join("d.png")).expect("a PNG").to_rgb8();
+    assert_eq!(png.dimensions(), (1400, 60 + 2 * (110 + 26 * 3)));
+    let count = |c: [u8; 3]| png.pixels().filter(|p| p.0 == c).count();
+    let (blue, orange) = (count([31, 119, 180]), count([255, 127, 14]));
+    assert!(blue > 5000 && orange > 5000, "blue {blue}, orange {orange}");
     let report = &run.stdout;
     assert!(report.contains("600 base points"), "{report}");
     // The rows of the P(stable) table: input, S, interval, ST, interval.
@@ -116,6 +120,89 @@ fn the_design_varies_one_input_per_row_and_the_indices_rank_slope_first() {
     assert!(slope.1 > 0.6 && slope.2 > 0.6, "slope: {slope:?}");
     assert!(yaw.2 < slope.2 && yaw.2 > 0.01, "yaw: {yaw:?}");
     assert!(drop.2 < 0.1, "drop: {drop:?}");
+}
+
+#[test]
+fn the_design_flag_and_the_sobol_sequence() {
+    let dir = TempDir::new("design-flag");
+    dir.write(
+        "plain.toml",
+        "[surface]\nfriction_coefficient = { dist = \"uniform\", min = 0.3, max = 0.9 }\n\
+         [simulation]\nt_max_s = 5.0\n",
+    );
+    // --design sobol-indices on a scenario without the key: the file stores the design
+    // with the scenario, and `sensitivity` takes it.
+    let sweep = |design: &str, out: &str, samples: &str| {
+        touchdown(
+            dir.path(),
+            &[
+                "sweep",
+                "--quiet",
+                "--scenario",
+                "plain.toml",
+                "--design",
+                design,
+                "--samples",
+                samples,
+                "--out",
+                out,
+            ],
+        )
+    };
+    let run = sweep("sobol-indices", "i.arrow", "140");
+    assert!(dir.join("i.arrow").is_file(), "{run}");
+    // 11 inputs and the friction drawn: blocks of 14; row 2 + 11 is A with B's friction.
+    let mu = column(&dir.join("i.arrow"), "friction_coefficient");
+    let slope = column(&dir.join("i.arrow"), "slope_deg");
+    assert_eq!((mu[13], slope[13]), (mu[1], slope[0]));
+    let run = touchdown(dir.path(), &["sensitivity", "i.arrow", "--bootstrap", "50"]);
+    run.assert_ok();
+    assert!(run.stdout.contains("| friction_coefficient |"), "{run}");
+
+    // The scrambled Sobol sequence: its first 2^m points put one value of each drawn input
+    // in each of 2^m equal slices of its range (independent draws leave about 37 % of the
+    // slices empty).
+    let run = sweep("sobol-sequence", "q.arrow", "64");
+    assert!(dir.join("q.arrow").is_file(), "{run}");
+    for (name, lo, hi) in [("slope_deg", 0.0, 45.0), ("friction_coefficient", 0.3, 0.9)] {
+        let x = column(&dir.join("q.arrow"), name);
+        let mut slices: Vec<usize> = x
+            .iter()
+            .map(|v| ((v - lo) / (hi - lo) * 64.0) as usize)
+            .collect();
+        slices.sort_unstable();
+        assert_eq!(slices, (0..64).collect::<Vec<_>>(), "{name}");
+    }
+    // The same sweep again: the same bits (a pure function of seed and index).
+    sweep("sobol-sequence", "q2.arrow", "64");
+    assert_eq!(
+        column(&dir.join("q.arrow"), "slope_deg"),
+        column(&dir.join("q2.arrow"), "slope_deg")
+    );
+
+    // A design the scenario cannot run is refused, naming the flag.
+    dir.write(
+        "grid.toml",
+        "[inputs]\nslope_deg = { dist = \"grid\", min = 0.0, max = 10.0, count = 3 }\n",
+    );
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--scenario",
+            "grid.toml",
+            "--design",
+            "sobol-sequence",
+            "--out",
+            "g.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(
+        run.stderr.contains("--design sobol-sequence") && run.stderr.contains("is a grid"),
+        "{run}"
+    );
+    assert!(!dir.join("g.arrow").exists());
 }
 
 #[test]

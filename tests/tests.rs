@@ -9,6 +9,7 @@ mod interrupt;
 mod lander;
 mod outcome_rules;
 mod outputs;
+mod parameters;
 mod plot;
 mod python_example;
 mod report;

@@ -102,6 +102,113 @@ pub struct Params<L> {
     pub thrust: bool,
 }
 
+impl<L: Lane> Params<L> {
+    /// Sets lane `i` of every per-lane parameter to lane `i` of `from`: a lane takes the
+    /// parameters of its own sample where a scenario draws them per sample (mass, CG
+    /// height, contact law, crush strength). The structure (legs, edges, stages, terrain,
+    /// the flags) must be the same in both: it is the sweep's, not the sample's.
+    ///
+    /// # Panics
+    /// If `from` has other legs or damper stages than `self`.
+    pub fn copy_lane(&mut self, i: usize, from: &Params<L>) {
+        fn one<L: Lane>(to: &mut L, from: &L, i: usize) {
+            to.set_lane(i, from.lane(i));
+        }
+        fn three<L: Lane>(to: &mut Vec3<L>, from: &Vec3<L>, i: usize) {
+            to.set_lane(i, from.lane(i));
+        }
+        assert!(self.legs.len() == from.legs.len(), "the same legs");
+        one(&mut self.gravity_m_s2, &from.gravity_m_s2, i);
+        one(&mut self.inverse_mass_per_kg, &from.inverse_mass_per_kg, i);
+        three(&mut self.inertia_kg_m2, &from.inertia_kg_m2, i);
+        three(&mut self.inverse_inertia, &from.inverse_inertia, i);
+        three(&mut self.gyroscopic, &from.gyroscopic, i);
+        for (to, from) in self.legs.iter_mut().zip(&from.legs) {
+            three(&mut to.tip_m, &from.tip_m, i);
+            three(&mut to.strut_axis, &from.strut_axis, i);
+        }
+        one(&mut self.stiffness_n_per_m, &from.stiffness_n_per_m, i);
+        one(&mut self.damping_n_s_per_m, &from.damping_n_s_per_m, i);
+        one(
+            &mut self.friction_coefficient,
+            &from.friction_coefficient,
+            i,
+        );
+        one(
+            &mut self.friction_stiffness_n_per_m,
+            &from.friction_stiffness_n_per_m,
+            i,
+        );
+        one(
+            &mut self.friction_compliance_m_per_n,
+            &from.friction_compliance_m_per_n,
+            i,
+        );
+        one(
+            &mut self.friction_damping_n_s_per_m,
+            &from.friction_damping_n_s_per_m,
+            i,
+        );
+        match (&mut self.honeycomb, &from.honeycomb) {
+            (Some(to), Some(from)) => {
+                assert!(to.stages.len() == from.stages.len(), "the same stages");
+                for (t, f) in to.stages.iter_mut().zip(&from.stages) {
+                    one(&mut t.0, &f.0, i);
+                    one(&mut t.1, &f.1, i);
+                }
+                one(&mut to.peak_force_n, &from.peak_force_n, i);
+                one(&mut to.peak_stroke_m, &from.peak_stroke_m, i);
+                one(&mut to.usable_stroke_m, &from.usable_stroke_m, i);
+            }
+            (None, None) => {}
+            _ => panic!("dampers in both or neither"),
+        }
+        one(&mut self.step_s, &from.step_s, i);
+        one(&mut self.flight_step_max_s, &from.flight_step_max_s, i);
+        one(&mut self.t_max_s, &from.t_max_s, i);
+        one(&mut self.leg_reach_m, &from.leg_reach_m, i);
+        one(&mut self.rest_speed_squared, &from.rest_speed_squared, i);
+        one(&mut self.rest_rate_squared, &from.rest_rate_squared, i);
+        one(&mut self.hold_time_s, &from.hold_time_s, i);
+        one(&mut self.bounce_clearance_m, &from.bounce_clearance_m, i);
+        one(
+            &mut self.diverged_speed_squared,
+            &from.diverged_speed_squared,
+            i,
+        );
+        one(
+            &mut self.diverged_rate_squared,
+            &from.diverged_rate_squared,
+            i,
+        );
+        one(
+            &mut self.diverged_penetration_m,
+            &from.diverged_penetration_m,
+            i,
+        );
+        one(
+            &mut self.quasi_static_force_squared,
+            &from.quasi_static_force_squared,
+            i,
+        );
+        one(&mut self.rest_contacts, &from.rest_contacts, i);
+        one(&mut self.leg_count, &from.leg_count, i);
+        one(&mut self.weight_n, &from.weight_n, i);
+        one(
+            &mut self.friction_coefficient_squared,
+            &from.friction_coefficient_squared,
+            i,
+        );
+        one(&mut self.inertia_min_kg_m2, &from.inertia_min_kg_m2, i);
+        one(
+            &mut self.diverged_momentum_squared,
+            &from.diverged_momentum_squared,
+            i,
+        );
+        one(&mut self.terrain_top_m, &from.terrain_top_m, i);
+    }
+}
+
 /// Broadcasts a scalar, outside the kernels: through memory, with no SIMD instruction
 /// (code outside the kernels is compiled for the baseline CPU, and an instruction of the
 /// kernel's set there would be an out-of-line call that leaves the vector unit dirty).

@@ -6,8 +6,10 @@
 //! owns the random numbers) and shared read-only by every lane.
 
 use crate::lane::{Lane, MAX_LANES};
+use std::sync::Arc;
 
-/// Precomputed terrain tiles.
+/// Precomputed terrain tiles. The heights are shared: a clone (the kernels' parameters of
+/// each worker, the model of each sample) costs a reference count, not the tiles.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Terrain {
     nodes: usize,
@@ -17,7 +19,7 @@ pub struct Terrain {
     /// absent terrain left in its place, denormals among them: a microcode assist of a
     /// hundred cycles per step on a flat surface.)
     inverse_spacing_per_m: f64,
-    heights_m: Vec<f64>,
+    heights_m: Arc<[f64]>,
     height_max_m: f64,
 }
 
@@ -37,7 +39,7 @@ impl Terrain {
             nodes,
             spacing_m,
             inverse_spacing_per_m: 1.0 / spacing_m,
-            heights_m,
+            heights_m: heights_m.into(),
             height_max_m,
         }
     }

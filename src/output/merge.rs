@@ -64,6 +64,11 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         .map(|c| c.0)
         .filter(|name| files[0].schema.field_with_name(name).is_ok())
         .collect();
+    let parameters: Vec<&'static str> = crate::scenario::PARAMETER_FIELDS
+        .iter()
+        .map(|c| c.0)
+        .filter(|name| files[0].schema.field_with_name(name).is_ok())
+        .collect();
     let meta = files[0].schema.metadata();
     let text = |key: &str| meta.get(key).map_or("", String::as_str);
     let info = SweepInfo {
@@ -73,6 +78,7 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         lane_type: text("touchdown.lane_type"),
         shard: None,
         control: &control,
+        parameters: &parameters,
     };
     let legs = files[0]
         .schema

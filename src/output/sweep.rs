@@ -48,6 +48,19 @@ pub struct SweepInfo<'a> {
     pub shard: Option<Shard>,
     /// The control loop's columns (`CONTROL_COLUMNS`) the file has: none without one.
     pub control: &'a [&'static str],
+    /// The columns of the parameters drawn per sample (`PARAMETER_FIELDS`), last.
+    pub parameters: &'a [&'static str],
+}
+
+/// The names of the parameter columns (`PARAMETER_FIELDS`) a sweep of `scenario` writes:
+/// those it draws per sample.
+#[must_use]
+pub fn parameter_columns(scenario: &crate::scenario::Scenario) -> Vec<&'static str> {
+    crate::scenario::Parameter::ALL
+        .iter()
+        .filter(|p| scenario.sampled[**p as usize].is_some())
+        .map(|p| p.name())
+        .collect()
 }
 
 /// The columns of what a control loop did, and of its sampled law parameters: name, unit,
@@ -317,6 +330,16 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
             fields.push(f(name, t, unit, description));
         }
     }
+    for (name, unit) in crate::scenario::PARAMETER_FIELDS {
+        if info.parameters.contains(&name) {
+            fields.push(f(
+                name,
+                DataType::Float64,
+                unit,
+                "scenario parameter drawn per sample",
+            ));
+        }
+    }
     let mut meta = BTreeMap::from([
         ("touchdown.engine".to_string(), ENGINE.to_string()),
         ("touchdown.kind".to_string(), "sweep".to_string()),
@@ -411,7 +434,13 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
             "release_vx_m_s" => f64s(&|r| control(r).release_velocity_m_s[0]),
             "release_vy_m_s" => f64s(&|r| control(r).release_velocity_m_s[1]),
             "release_vz_m_s" => f64s(&|r| control(r).release_velocity_m_s[2]),
-            other => anyhow::bail!("no column {other} in a sweep"),
+            other => match crate::scenario::Parameter::ALL
+                .iter()
+                .find(|p| p.name() == other)
+            {
+                Some(&p) => f64s(&|r| r.sample.parameters[p as usize]),
+                None => anyhow::bail!("no column {other} in a sweep"),
+            },
         });
     }
     Ok(RecordBatch::try_new(schema.clone(), cols)?)

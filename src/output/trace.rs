@@ -442,6 +442,12 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     {
         meta.insert(format!("touchdown.input.{name}"), value.to_string());
     }
+    for ((name, _), value) in crate::scenario::PARAMETER_FIELDS
+        .iter()
+        .zip(info.sample.parameters)
+    {
+        meta.insert(format!("touchdown.parameter.{name}"), value.to_string());
+    }
     let schema = Arc::new(Schema::new_with_metadata(fields, meta));
 
     let (file, out) = AtomicFile::create(path)?;

@@ -3,6 +3,7 @@
 //! instruments' shock). Pure Rust: `plotters` on a bitmap, with DejaVu Sans compiled in, so
 //! no system fonts, no Python.
 
+mod sensitivity;
 mod sweep;
 mod trace;
 
@@ -18,6 +19,8 @@ use plotters::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
+
+pub use sensitivity::sensitivity_chart;
 
 /// The font family every picture uses (registered from the embedded DejaVu Sans).
 pub(crate) const FONT: &str = "sans-serif";
@@ -62,7 +65,7 @@ pub(crate) fn register_font() -> anyhow::Result<()> {
 
 /// Draws a `width` x `height` picture with `draw` and writes it to `path` as PNG (under a
 /// temporary name until it is complete).
-fn save_png(
+pub(crate) fn save_png(
     path: &Path,
     (width, height): (u32, u32),
     draw: impl FnOnce(&Area<'_>) -> anyhow::Result<()>,

@@ -102,6 +102,8 @@ mod tests {
 
     fn two_stage(peak: bool) -> Honeycomb {
         Honeycomb {
+            area_m2: 1.0,
+            initial_peak_factor: None,
             stages: vec![(0.02, 100.0), (0.05, 300.0)],
             peak_force_n: if peak { 175.0 } else { 100.0 },
             peak_stroke_m: if peak { 0.002 } else { 0.0 },

@@ -2,9 +2,10 @@
 //! sample fixes (`Surface`, the slope plane and terrain tile it lands on).
 
 use crate::sampling::Sample;
-use crate::scenario::{PSI_PA, Scenario, StrutAxes};
+use crate::scenario::{PARAMETERS, PSI_PA, Parameter, Sampled, Scenario, StrutAxes};
 use glam::{DQuat, DVec3};
 use kernels::terrain::Terrain;
+use std::borrow::Cow;
 
 /// One leg: its footpad in B with the damper uncrushed, and its strut axis.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,6 +36,11 @@ pub struct Honeycomb {
     pub peak_force_n: f64,
     /// Stroke over which the initial peak acts, m (0 when pre-crushed).
     pub peak_stroke_m: f64,
+    /// Cross-section of the cartridge, m^2: a crush strength drawn per sample gives the
+    /// first stage's force (`Model::for_sample`).
+    pub area_m2: f64,
+    /// The initial peak's factor over the first plateau (`None` when pre-crushed).
+    pub initial_peak_factor: Option<f64>,
 }
 
 impl Honeycomb {
@@ -85,6 +91,9 @@ pub struct Model {
     pub start: crate::scenario::Start,
     /// The control loop and its thrusters, if any.
     pub control: Option<crate::control::ControlModel>,
+    /// The parameters each sample draws (`Scenario::sampled`): `for_sample` puts a
+    /// sample's values in their place.
+    pub sampled: Sampled,
 }
 
 impl Model {
@@ -144,12 +153,14 @@ impl Model {
                 stages,
                 peak_force_n,
                 peak_stroke_m,
+                area_m2,
+                initial_peak_factor: (!d.pre_crushed).then_some(d.initial_peak_factor),
             }
         });
         let o = &s.outcome;
         let leg_reach_m = legs.iter().map(|l| l.tip_m.length()).fold(0.0, f64::max);
         let footpad_depth_m = legs.iter().map(|l| -l.tip_m.z).fold(0.0, f64::max);
-        Model {
+        let mut model = Model {
             gravity_m_s2: s.gravity_m_s2,
             mass_kg: s.lander.mass_kg,
             inertia_kg_m2: DVec3::from_array(s.lander.inertia_kg_m2),
@@ -184,7 +195,67 @@ impl Model {
             clearance_m: s.initial.clearance_m,
             start: s.initial.start,
             control: crate::control::ControlModel::of(s, leg_reach_m, footpad_depth_m),
+            sampled: s.sampled,
+        };
+        // A steady slide is decided early in all lanes of a sweep or in none: where the
+        // parameters it depends on are drawn, only if it may be for every draw (the
+        // heaviest lander with the most friction on the weakest cartridge).
+        if s.sampled.iter().any(Option::is_some) {
+            let mut corner = [0.0; PARAMETERS];
+            for p in Parameter::ALL {
+                corner[p as usize] = match (p, s.sampled[p as usize]) {
+                    (_, None) => s.parameter(p),
+                    (Parameter::CrushStrengthPsi, Some(d)) => d.support().0,
+                    (_, Some(d)) => d.support().1,
+                };
+            }
+            let worst = model.with_parameters(&corner);
+            model.thresholds.early_sliding = worst.slides_decidable();
         }
+        model
+    }
+
+    /// The model of one sample: this one, with the sample's values of the parameters the
+    /// scenario draws (`Scenario::sampled`) in their place; this one itself where it draws
+    /// none.
+    #[must_use]
+    pub fn for_sample(&self, sample: &Sample) -> Cow<'_, Model> {
+        if self.sampled.iter().all(Option::is_none) {
+            Cow::Borrowed(self)
+        } else {
+            Cow::Owned(self.with_parameters(&sample.parameters))
+        }
+    }
+
+    /// This model with `values` (indexed by `Parameter`) for the parameters it draws, each
+    /// set as `new` sets it from a scenario that fixes it: the same bits.
+    fn with_parameters(&self, values: &[f64; PARAMETERS]) -> Model {
+        let mut m = self.clone();
+        for p in Parameter::ALL {
+            if self.sampled[p as usize].is_none() {
+                continue;
+            }
+            let x = values[p as usize];
+            match p {
+                Parameter::MassKg => m.mass_kg = x,
+                Parameter::CgHeightM => {
+                    for leg in &mut m.legs {
+                        leg.tip_m.z = -x;
+                    }
+                }
+                Parameter::StiffnessNPerM => m.contact.stiffness_n_per_m = x,
+                Parameter::DampingNSPerM => m.contact.damping_n_s_per_m = x,
+                Parameter::FrictionCoefficient => m.contact.friction_coefficient = x,
+                Parameter::CrushStrengthPsi => {
+                    if let Some(h) = &mut m.honeycomb {
+                        let plateau = x * PSI_PA * h.area_m2;
+                        h.stages[0].1 = plateau;
+                        h.peak_force_n = h.initial_peak_factor.map_or(plateau, |f| plateau * f);
+                    }
+                }
+            }
+        }
+        m
     }
 
     /// Whether a steady slide may be decided `sliding` early (MODEL.md section 8): on a

@@ -84,7 +84,8 @@ pub fn from_euler_zyx(yaw: f64, pitch: f64, roll: f64) -> DQuat {
         * DQuat::from_xyzw(sx, 0.0, 0.0, cx)
 }
 
-/// Runs one sample to its outcome, handing every step to `observe` (for traces).
+/// Runs one sample to its outcome, handing every step to `observe` (for traces), with the
+/// sample's own parameters where the scenario draws them (`Model::for_sample`).
 pub fn run(model: &Model, sample: &Sample, observe: impl FnMut(&StepReport)) -> Summary {
     run_to_end(model, sample, observe).0
 }
@@ -96,6 +97,7 @@ pub fn run_to_end(
     sample: &Sample,
     mut observe: impl FnMut(&StepReport),
 ) -> (Summary, StepReport) {
+    let model = &*model.for_sample(sample);
     let surface = Surface::of(sample);
     let mut state = initial_state(model, &surface, sample);
     let mut tracker = Tracker::new(model, &state);

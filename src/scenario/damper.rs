@@ -1,6 +1,7 @@
 //! The `[damper]` table: the crushable honeycomb dampers and their strut axes.
 
 use super::ScenarioError;
+use super::inputs::{Parameter, Sampled, read_parameter};
 use super::reader::Reader;
 use toml::Value;
 
@@ -35,7 +36,11 @@ pub enum StrutAxes {
     PerLeg(Vec<[f64; 3]>),
 }
 
-pub(super) fn read_damper(top: &mut Reader, d: &Damper) -> Result<Damper, ScenarioError> {
+pub(super) fn read_damper(
+    top: &mut Reader,
+    d: &Damper,
+    sampled: &mut Sampled,
+) -> Result<Damper, ScenarioError> {
     let Some(mut r) = top.table("damper")? else {
         return Ok(d.clone());
     };
@@ -80,7 +85,13 @@ pub(super) fn read_damper(top: &mut Reader, d: &Damper) -> Result<Damper, Scenar
             stages
         }
         None => vec![Stage {
-            crush_strength_psi: r.positive("crush_strength_psi", d.stages[0].crush_strength_psi)?,
+            crush_strength_psi: read_parameter(
+                &mut r,
+                Parameter::CrushStrengthPsi,
+                d.stages[0].crush_strength_psi,
+                true,
+                sampled,
+            )?,
             stroke_m: r.positive("usable_stroke_m", d.stages[0].stroke_m)?,
         }],
     };

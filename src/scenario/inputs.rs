@@ -24,6 +24,30 @@ pub enum Dist {
 }
 
 impl Dist {
+    /// The distribution as a scenario writes it, `{ dist = "uniform", min = 1, max = 2 }`.
+    #[must_use]
+    pub fn toml(&self) -> String {
+        match *self {
+            Dist::Fixed(x) => format!("{x:?}"),
+            Dist::Uniform { min, max } => {
+                format!("{{ dist = \"uniform\", min = {min:?}, max = {max:?} }}")
+            }
+            Dist::Normal { mean, sd, min, max } => {
+                let mut s = format!("{{ dist = \"normal\", mean = {mean:?}, sd = {sd:?}");
+                if min.is_finite() {
+                    s += &format!(", min = {min:?}");
+                }
+                if max.is_finite() {
+                    s += &format!(", max = {max:?}");
+                }
+                s + " }"
+            }
+            Dist::Grid { min, max, count } => {
+                format!("{{ dist = \"grid\", min = {min:?}, max = {max:?}, count = {count} }}")
+            }
+        }
+    }
+
     /// The smallest and largest value the distribution can produce.
     #[must_use]
     pub fn support(&self) -> (f64, f64) {
@@ -121,6 +145,119 @@ impl<T: Copy> Inputs<T> {
     }
 }
 
+/// The scenario parameters that may be drawn per sample like the inputs: a distribution in
+/// place of the number at their key (`Parameter::key`). Each drawn one is a column of the
+/// sweep, named as here, after the inputs'.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Parameter {
+    /// `lander.mass_kg` (the inertia stays as given).
+    MassKg,
+    /// `lander.cg_height_m`: every footpad this far below the CG.
+    CgHeightM,
+    /// `surface.stiffness_n_per_m`.
+    StiffnessNPerM,
+    /// `surface.damping_n_s_per_m`.
+    DampingNSPerM,
+    /// `surface.friction_coefficient`.
+    FrictionCoefficient,
+    /// `damper.crush_strength_psi` (a single-stage cartridge).
+    CrushStrengthPsi,
+}
+
+/// Number of `Parameter`s.
+pub const PARAMETERS: usize = 6;
+
+/// Names (the column's and the key's last part) and units of the parameters, in the order
+/// of `Parameter::ALL`.
+pub const PARAMETER_FIELDS: [(&str, &str); PARAMETERS] = [
+    ("mass_kg", "kg"),
+    ("cg_height_m", "m"),
+    ("stiffness_n_per_m", "N/m"),
+    ("damping_n_s_per_m", "N s/m"),
+    ("friction_coefficient", "1"),
+    ("crush_strength_psi", "psi"),
+];
+
+impl Parameter {
+    /// Every parameter, in column order.
+    pub const ALL: [Parameter; PARAMETERS] = [
+        Parameter::MassKg,
+        Parameter::CgHeightM,
+        Parameter::StiffnessNPerM,
+        Parameter::DampingNSPerM,
+        Parameter::FrictionCoefficient,
+        Parameter::CrushStrengthPsi,
+    ];
+
+    /// The column name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        PARAMETER_FIELDS[self as usize].0
+    }
+
+    /// The scenario key, with its table.
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Parameter::MassKg => "lander.mass_kg",
+            Parameter::CgHeightM => "lander.cg_height_m",
+            Parameter::StiffnessNPerM => "surface.stiffness_n_per_m",
+            Parameter::DampingNSPerM => "surface.damping_n_s_per_m",
+            Parameter::FrictionCoefficient => "surface.friction_coefficient",
+            Parameter::CrushStrengthPsi => "damper.crush_strength_psi",
+        }
+    }
+}
+
+/// The distribution of each parameter drawn per sample, `None` where the scenario gives a
+/// number (which its own field holds); indexed by `Parameter as usize`.
+pub type Sampled = [Option<Dist>; PARAMETERS];
+
+/// Reads parameter `which` at its key of `r`: a number (`positive`: greater than 0, else at
+/// least 0), or a distribution whose values all are, recorded in `sampled`. Gives the
+/// number, or the distribution's median: the value of the scenario's own field, which the
+/// sweep's samples replace by their draws.
+pub(super) fn read_parameter(
+    r: &mut Reader,
+    which: Parameter,
+    default: f64,
+    positive: bool,
+    sampled: &mut Sampled,
+) -> Result<f64, ScenarioError> {
+    let key = which.name();
+    let (number, values, min) = if positive {
+        (
+            "a number greater than 0",
+            "values greater than 0",
+            f64::MIN_POSITIVE,
+        )
+    } else {
+        ("a number of at least 0", "values of at least 0", 0.0)
+    };
+    match r.take(key) {
+        None => Ok(default),
+        Some(v @ Value::Table(_)) => {
+            let dist = read_dist(r, key, &v, &Range::at_least(min, values))?;
+            let median = match dist {
+                Dist::Grid { count, .. } => crate::sampling::quantile(&dist, 0.5, count / 2),
+                _ => crate::sampling::quantile(&dist, 0.5, 0),
+            };
+            if !matches!(dist, Dist::Fixed(_)) {
+                sampled[which as usize] = Some(dist);
+            }
+            Ok(median)
+        }
+        Some(v) => {
+            let x = r.number(key, &v)?;
+            if x >= min {
+                Ok(x)
+            } else {
+                Err(r.error(key, &v, number))
+            }
+        }
+    }
+}
+
 /// The range an input must stay in, for validation.
 #[derive(Clone, Copy)]
 struct Range {
@@ -131,6 +268,16 @@ struct Range {
 }
 
 impl Range {
+    /// Values of at least `min` (`text` says so).
+    fn at_least(min: f64, text: &'static str) -> Range {
+        Range {
+            min,
+            max: f64::INFINITY,
+            max_open: false,
+            text,
+        }
+    }
+
     fn holds(&self, x: f64) -> bool {
         x >= self.min && (x < self.max || (!self.max_open && x <= self.max))
     }
@@ -197,17 +344,7 @@ pub(super) fn read_dist_at_least(
 ) -> Result<Dist, ScenarioError> {
     match r.take(key) {
         None => Ok(default),
-        Some(v) => read_dist(
-            r,
-            key,
-            &v,
-            &Range {
-                min,
-                max: f64::INFINITY,
-                max_open: false,
-                text,
-            },
-        ),
+        Some(v) => read_dist(r, key, &v, &Range::at_least(min, text)),
     }
 }
 

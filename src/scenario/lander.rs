@@ -1,6 +1,7 @@
 //! The `[lander]` table: the lander's mass, inertia and leg geometry.
 
 use super::ScenarioError;
+use super::inputs::{Parameter, Sampled, read_parameter};
 use super::reader::Reader;
 use toml::Value;
 
@@ -54,11 +55,15 @@ impl Lander {
     }
 }
 
-pub(super) fn read_lander(top: &mut Reader, d: &Lander) -> Result<Lander, ScenarioError> {
+pub(super) fn read_lander(
+    top: &mut Reader,
+    d: &Lander,
+    sampled: &mut Sampled,
+) -> Result<Lander, ScenarioError> {
     let Some(mut r) = top.table("lander")? else {
         return Ok(d.clone());
     };
-    let mass_kg = r.positive("mass_kg", d.mass_kg)?;
+    let mass_kg = read_parameter(&mut r, Parameter::MassKg, d.mass_kg, true, sampled)?;
     let inertia_kg_m2 = match r.take("inertia_kg_m2") {
         None => d.inertia_kg_m2,
         Some(v) => {
@@ -125,7 +130,7 @@ pub(super) fn read_lander(top: &mut Reader, d: &Lander) -> Result<Lander, Scenar
         None => Geometry::Regular {
             legs: r.integer("legs", d_legs as i64, 3, 64)? as usize,
             footpad_radius_m: r.positive("footpad_radius_m", d_radius)?,
-            cg_height_m: r.positive("cg_height_m", d_height)?,
+            cg_height_m: read_parameter(&mut r, Parameter::CgHeightM, d_height, true, sampled)?,
             first_leg_azimuth_deg: r.f64("first_leg_azimuth_deg", d_az)?,
         },
     };

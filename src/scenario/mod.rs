@@ -19,7 +19,7 @@ mod thrusters;
 pub use control::{AttitudeHold, Control, Descent, HoldDown, LAW_PARAMETERS, Sensors, Target};
 pub use damper::{Damper, Stage, StrutAxes};
 pub use initial::{AttitudeReference, Initial, Start};
-pub use inputs::{Dist, INPUT_FIELDS, Inputs};
+pub use inputs::{Dist, INPUT_FIELDS, Inputs, PARAMETER_FIELDS, PARAMETERS, Parameter, Sampled};
 pub use lander::{Geometry, Lander};
 pub use outcome::Outcome;
 pub use simulation::Simulation;
@@ -99,6 +99,10 @@ pub enum Design {
     /// Saltelli's design for Sobol sensitivity indices: with `d` inputs drawn at random,
     /// blocks of `d + 2` samples share a base point; see `sampling::sample`.
     SobolIndices,
+    /// Quasi-random: the inputs drawn from a distribution take the coordinates of an
+    /// Owen-scrambled Sobol sequence (`qmc`) through their inverse CDFs, instead of
+    /// independent draws.
+    SobolSequence,
 }
 
 /// A complete, validated scenario.
@@ -114,6 +118,10 @@ pub struct Scenario {
     pub surface: Surface,
     pub damper: Damper,
     pub inputs: Inputs<Dist>,
+    /// The parameters drawn per sample (`Parameter`): their distributions, `None` for those
+    /// the scenario fixes. A drawn parameter's own field (`lander.mass_kg`, ...) holds its
+    /// distribution's median.
+    pub sampled: Sampled,
     pub initial: Initial,
     pub simulation: Simulation,
     pub outcome: Outcome,
@@ -196,6 +204,7 @@ impl Default for Scenario {
                 rate_y_deg_s: normal(0.5),
                 rate_z_deg_s: normal(0.5),
             },
+            sampled: [None; PARAMETERS],
             initial: Initial {
                 attitude_reference: AttitudeReference::Vertical,
                 clearance_m: 0.001,
@@ -238,19 +247,39 @@ pub fn with_seed(text: &str, seed: u64) -> String {
     if Scenario::from_toml(text).is_ok_and(|s| s.seed == seed) {
         return text.to_string();
     }
+    with_top_level(text, "seed", &seed.to_string())
+}
+
+/// The scenario text `text` with its top-level `design` set to `design` (as `with_seed`).
+#[must_use]
+pub fn with_design(text: &str, design: Design) -> String {
+    if Scenario::from_toml(text).is_ok_and(|s| s.design == design) {
+        return text.to_string();
+    }
+    let word = match design {
+        Design::Independent => "\"independent\"",
+        Design::SobolIndices => "\"sobol-indices\"",
+        Design::SobolSequence => "\"sobol-sequence\"",
+    };
+    with_top_level(text, "design", word)
+}
+
+/// `text` with the top-level line `key = value`, in place of the one it has or before its
+/// first key.
+fn with_top_level(text: &str, key: &str, value: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();
     let top_level = lines
         .iter()
         .position(|l| l.trim_start().starts_with('['))
         .unwrap_or(lines.len());
-    let is_seed = |l: &str| {
+    let is_key = |l: &str| {
         l.trim_start()
-            .strip_prefix("seed")
+            .strip_prefix(key)
             .is_some_and(|rest| rest.trim_start().starts_with('='))
     };
-    let line = format!("seed = {seed}");
+    let line = format!("{key} = {value}");
     let mut out: Vec<String> = lines.iter().map(ToString::to_string).collect();
-    match lines[..top_level].iter().position(|l| is_seed(l)) {
+    match lines[..top_level].iter().position(|l| is_key(l)) {
         Some(i) => out[i] = line,
         None => {
             let first_key = lines
@@ -288,15 +317,21 @@ impl Scenario {
         let d = Scenario::default();
         let mut top = Reader::new("", table);
         let seed = top.integer("seed", d.seed as i64, 0, i64::MAX)? as u64;
-        let design = match top.word("design", "independent", &["independent", "sobol-indices"])? {
+        let design = match top.word(
+            "design",
+            "independent",
+            &["independent", "sobol-indices", "sobol-sequence"],
+        )? {
             "sobol-indices" => Design::SobolIndices,
+            "sobol-sequence" => Design::SobolSequence,
             _ => Design::Independent,
         };
         let samples = top.integer("samples", d.samples as i64, 1, i64::MAX)? as u64;
         let gravity_m_s2 = top.non_negative("gravity_m_s2", d.gravity_m_s2)?;
-        let lander = read_lander(&mut top, &d.lander)?;
-        let surface = read_surface(&mut top, &d.surface)?;
-        let damper = read_damper(&mut top, &d.damper)?;
+        let mut sampled = [None; PARAMETERS];
+        let lander = read_lander(&mut top, &d.lander, &mut sampled)?;
+        let surface = read_surface(&mut top, &d.surface, &mut sampled)?;
+        let damper = read_damper(&mut top, &d.damper, &mut sampled)?;
         let inputs = read_inputs(&mut top, &d.inputs)?;
         let initial = read_initial(&mut top, &d.initial)?;
         let simulation = read_simulation(&mut top, &d.simulation)?;
@@ -314,6 +349,7 @@ impl Scenario {
             surface,
             damper,
             inputs,
+            sampled,
             initial,
             simulation,
             outcome,
@@ -324,6 +360,7 @@ impl Scenario {
         s.check_leg_counts()?;
         s.check_can_land()?;
         s.check_design()?;
+        s.check_sampled()?;
         crate::control::check(&s)?;
         Ok(s)
     }
@@ -331,37 +368,39 @@ impl Scenario {
     /// Refuses a design that cannot run: the Sobol-index design needs inputs drawn at random
     /// (fixed ones carry no variance to share out) and no grid (a grid is not random).
     fn check_design(&self) -> Result<(), ScenarioError> {
-        if self.design != Design::SobolIndices {
-            return Ok(());
-        }
+        let word = match self.design {
+            Design::Independent => return Ok(()),
+            Design::SobolIndices => "\"sobol-indices\"",
+            Design::SobolSequence => "\"sobol-sequence\"",
+        };
         let invalid = |value: String, allowed: &str| ScenarioError::Invalid {
             key: "design".to_string(),
             value,
             allowed: allowed.to_string(),
         };
-        let dists = self.inputs.to_array();
-        if let Some((name, _)) = INPUT_FIELDS
-            .iter()
-            .zip(&dists)
-            .find(|(_, d)| matches!(d, Dist::Grid { .. }))
-        {
+        let dists = crate::sampling::value_dists(self);
+        if let Some(k) = (0..dists.len()).find(|&k| matches!(dists[k], Dist::Grid { .. })) {
+            let name = crate::sampling::value_name(k);
+            let key = Parameter::ALL
+                .iter()
+                .find(|p| p.name() == name)
+                .map_or(format!("inputs.{name}"), |p| p.key().to_string());
             return Err(invalid(
-                "\"sobol-indices\"".to_string(),
+                word.to_string(),
                 &format!(
-                    "inputs drawn at random: inputs.{} is a grid (give it a uniform \
-                     distribution over the same range)",
-                    name.0
+                    "inputs drawn at random: {key} is a grid (give it a uniform \
+                     distribution over the same range)"
                 ),
             ));
         }
         let laws = crate::sampling::law_grid_size(self.control.as_ref());
         if laws > 1 {
             return Err(invalid(
-                "\"sobol-indices\"".to_string(),
+                word.to_string(),
                 "control law parameters drawn at random, not on a grid",
             ));
         }
-        if crate::sampling::design_inputs(self).is_empty() {
+        if self.design == Design::SobolIndices && crate::sampling::design_inputs(self).is_empty() {
             return Err(invalid(
                 "\"sobol-indices\"".to_string(),
                 "at least one input drawn from a distribution (every input is fixed: there \
@@ -369,6 +408,56 @@ impl Scenario {
             ));
         }
         Ok(())
+    }
+
+    /// Refuses parameters drawn per sample where the model cannot take them per sample: a
+    /// crush strength without a damper, and the mass or CG height of a lander with a control
+    /// loop (its thrust limits and descent are planned for one lander).
+    fn check_sampled(&self) -> Result<(), ScenarioError> {
+        let refuse = |p: Parameter, why: &str| {
+            let dist = self.sampled[p as usize].expect("a sampled parameter");
+            Err(ScenarioError::Invalid {
+                key: p.key().to_string(),
+                value: dist.toml(),
+                allowed: why.to_string(),
+            })
+        };
+        if self.sampled[Parameter::CrushStrengthPsi as usize].is_some() && !self.damper.enabled {
+            return refuse(
+                Parameter::CrushStrengthPsi,
+                "a number while damper.enabled = false (no cartridge to crush): enable the \
+                 damper to draw its crush strength per sample",
+            );
+        }
+        if self.control.is_some() {
+            for p in [Parameter::MassKg, Parameter::CgHeightM] {
+                if self.sampled[p as usize].is_some() {
+                    return refuse(
+                        p,
+                        "a number in a scenario with a control loop (its thrust limits and \
+                         descent are planned for one lander; not yet drawn per sample)",
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The value of parameter `p` where the scenario fixes it (its field; for a drawn one,
+    /// the median of its distribution).
+    #[must_use]
+    pub fn parameter(&self, p: Parameter) -> f64 {
+        match p {
+            Parameter::MassKg => self.lander.mass_kg,
+            Parameter::CgHeightM => match self.lander.geometry {
+                Geometry::Regular { cg_height_m, .. } => cg_height_m,
+                Geometry::Tips(_) => f64::NAN,
+            },
+            Parameter::StiffnessNPerM => self.surface.stiffness_n_per_m,
+            Parameter::DampingNSPerM => self.surface.damping_n_s_per_m,
+            Parameter::FrictionCoefficient => self.surface.friction_coefficient,
+            Parameter::CrushStrengthPsi => self.damper.stages[0].crush_strength_psi,
+        }
     }
 
     /// Number of legs of the lander.

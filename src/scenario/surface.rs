@@ -1,6 +1,7 @@
 //! The `[surface]` table and its `[surface.roughness]`: the contact law and the terrain.
 
 use super::ScenarioError;
+use super::inputs::{Parameter, Sampled, read_parameter};
 use super::reader::Reader;
 
 /// Gaussian-smoothed random terrain (MODEL.md section 4).
@@ -30,13 +31,35 @@ pub struct Surface {
     pub roughness: Roughness,
 }
 
-pub(super) fn read_surface(top: &mut Reader, d: &Surface) -> Result<Surface, ScenarioError> {
+pub(super) fn read_surface(
+    top: &mut Reader,
+    d: &Surface,
+    sampled: &mut Sampled,
+) -> Result<Surface, ScenarioError> {
     let Some(mut r) = top.table("surface")? else {
         return Ok(d.clone());
     };
-    let stiffness_n_per_m = r.positive("stiffness_n_per_m", d.stiffness_n_per_m)?;
-    let damping_n_s_per_m = r.non_negative("damping_n_s_per_m", d.damping_n_s_per_m)?;
-    let friction_coefficient = r.non_negative("friction_coefficient", d.friction_coefficient)?;
+    let stiffness_n_per_m = read_parameter(
+        &mut r,
+        Parameter::StiffnessNPerM,
+        d.stiffness_n_per_m,
+        true,
+        sampled,
+    )?;
+    let damping_n_s_per_m = read_parameter(
+        &mut r,
+        Parameter::DampingNSPerM,
+        d.damping_n_s_per_m,
+        false,
+        sampled,
+    )?;
+    let friction_coefficient = read_parameter(
+        &mut r,
+        Parameter::FrictionCoefficient,
+        d.friction_coefficient,
+        false,
+        sampled,
+    )?;
     let friction_stiffness_n_per_m =
         r.positive("friction_stiffness_n_per_m", d.friction_stiffness_n_per_m)?;
     let friction_damping_n_s_per_m =

@@ -1,0 +1,192 @@
+//! Scenario parameters drawn per sample (`Scenario::sampled`): a sample with a drawn value
+//! runs exactly as the same sample of a scenario that fixes that value, in the kernels and
+//! in the reference; the drawn values come out as columns; bad draws are refused.
+
+use crate::common::{TempDir, arrow_column as column, touchdown};
+use touchdown::reference::{self, Model};
+use touchdown::sampling;
+use touchdown::scenario::{Parameter, Scenario};
+use touchdown::sweep;
+
+/// Every parameter drawn, over ranges that keep the default lander landing in every way it
+/// can (stable, tipped, sliding at the low frictions, crushing its dampers at the low crush
+/// strengths), on the default slopes and attitudes.
+const DRAWN: &str = "[lander]
+mass_kg = { dist = \"uniform\", min = 70.0, max = 130.0 }
+cg_height_m = { dist = \"normal\", mean = 0.43, sd = 0.04, min = 0.33, max = 0.53 }
+[surface]
+stiffness_n_per_m = { dist = \"uniform\", min = 1.0e4, max = 1.0e5 }
+damping_n_s_per_m = { dist = \"uniform\", min = 0.0, max = 2000.0 }
+friction_coefficient = { dist = \"uniform\", min = 0.2, max = 1.0 }
+[damper]
+enabled = true
+crush_strength_psi = { dist = \"uniform\", min = 2.0, max = 60.0 }
+[simulation]
+t_max_s = 40.0
+";
+
+/// `DRAWN` with every drawn parameter fixed at `values` (indexed by `Parameter`), written as
+/// numbers that read back to the same bits.
+fn fixed(values: &[f64]) -> String {
+    let mut text = DRAWN.to_string();
+    for p in Parameter::ALL {
+        let line = text
+            .lines()
+            .find(|l| l.starts_with(&format!("{} = {{", p.name())))
+            .expect("each parameter drawn")
+            .to_string();
+        text = text.replace(&line, &format!("{} = {:?}", p.name(), values[p as usize]));
+    }
+    text
+}
+
+#[test]
+fn a_drawn_parameter_runs_as_the_same_value_fixed_row_for_row() {
+    let drawn = Scenario::from_toml(DRAWN).expect("a valid scenario");
+    assert!(drawn.sampled.iter().all(Option::is_some), "all six drawn");
+    let model = Model::new(&drawn);
+    let n = 48;
+    let mut rows = Vec::new();
+    sweep::run(&drawn, &model, 0..n, 16, |r| {
+        rows.extend(r);
+        Ok(())
+    })
+    .expect("the sweep runs");
+    assert_eq!(rows.len() as u64, n);
+    let mut outcomes = std::collections::BTreeSet::new();
+    let mut crushed = 0;
+    for row in &rows {
+        let i = row.sample.index;
+        let values = row.sample.parameters;
+        // Each value drawn from its own distribution's support...
+        for p in Parameter::ALL {
+            let (lo, hi) = drawn.sampled[p as usize].unwrap().support();
+            let x = values[p as usize];
+            assert!((lo..=hi).contains(&x), "sample {i}: {} = {x}", p.name());
+        }
+        // ...and the sample of the scenario that fixes those values is the same sample: the
+        // inputs (their streams do not depend on the parameters) and, in the kernels and in
+        // the reference, every result, bit for bit.
+        let one = Scenario::from_toml(&fixed(&values)).expect("the fixed scenario");
+        assert!(one.sampled.iter().all(Option::is_none));
+        let one_model = Model::new(&one);
+        let mut alone = Vec::new();
+        sweep::run(&one, &one_model, i..i + 1, 1, |r| {
+            alone.extend(r);
+            Ok(())
+        })
+        .expect("the sample runs alone");
+        let (a, b) = (&row.sample, &alone[0].sample);
+        assert_eq!(a.inputs, b.inputs, "sample {i}: inputs");
+        assert_eq!(a.parameters, b.parameters, "sample {i}: parameters");
+        assert_eq!(
+            format!("{:?}", row.summary),
+            format!("{:?}", alone[0].summary),
+            "sample {i}: kernel results"
+        );
+        let s = sampling::sample(&drawn, i);
+        assert_eq!(
+            format!("{:?}", reference::run(&model, &s, |_| {})),
+            format!("{:?}", reference::run(&one_model, &s, |_| {})),
+            "sample {i}: reference results"
+        );
+        outcomes.insert(row.summary.outcome.name());
+        crushed += usize::from(row.summary.legs.iter().any(|l| l.stroke_m > 0.0));
+    }
+    // The comparison means something only where the parameters act: several outcomes, and
+    // dampers that crushed.
+    assert!(outcomes.len() >= 2, "outcomes {outcomes:?}");
+    assert!(crushed >= 5, "{crushed} samples crushed a damper");
+}
+
+#[test]
+fn drawn_parameters_are_columns_and_bad_draws_are_refused() {
+    let dir = TempDir::new("parameters");
+    dir.write(
+        "two.toml",
+        "[surface]\nstiffness_n_per_m = { dist = \"uniform\", min = 2.0e4, max = 8.0e4 }\n\
+         friction_coefficient = { dist = \"normal\", mean = 0.6, sd = 0.1, min = 0.3, max = 0.9 }\n\
+         [simulation]\nt_max_s = 20.0\n",
+    );
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--quiet",
+            "--scenario",
+            "two.toml",
+            "--samples",
+            "200",
+            "--out",
+            "a.arrow",
+        ],
+    );
+    assert!(dir.join("a.arrow").is_file(), "{run}");
+    let k = column(&dir.join("a.arrow"), "stiffness_n_per_m").expect("a stiffness column");
+    let mu = column(&dir.join("a.arrow"), "friction_coefficient").expect("a friction column");
+    assert_eq!((k.len(), mu.len()), (200, 200));
+    assert!(k.iter().all(|x| (2.0e4..=8.0e4).contains(x)));
+    assert!(mu.iter().all(|x| (0.3..=0.9).contains(x)));
+    // Spread over the range: a uniform's sample mean is within 5 standard errors (1.7e4 /
+    // sqrt(200) = 1.2e3) of the middle.
+    let mean = k.iter().sum::<f64>() / 200.0;
+    assert!((mean - 5.0e4).abs() < 5.0 * 1.2e3, "mean stiffness {mean}");
+    // Only the drawn parameters are columns.
+    assert!(column(&dir.join("a.arrow"), "mass_kg").is_none());
+    // `trace` runs a sample with its drawn values, and shows them.
+    let trace = touchdown(
+        dir.path(),
+        &[
+            "trace",
+            "--scenario",
+            "two.toml",
+            "--sample",
+            "7",
+            "--out",
+            "t.arrow",
+        ],
+    );
+    let k7 = format!("{:.6}", k[7]);
+    assert!(
+        trace.stdout.contains("stiffness_n_per_m") && trace.stdout.contains(&k7),
+        "{trace}"
+    );
+
+    for (name, text, expect) in [
+        (
+            "a crush strength drawn without a damper",
+            "[damper]\ncrush_strength_psi = { dist = \"uniform\", min = 30.0, max = 90.0 }\n",
+            vec!["`damper.crush_strength_psi`", "damper.enabled = false"],
+        ),
+        (
+            "a stiffness drawn below 0",
+            "[surface]\nstiffness_n_per_m = { dist = \"uniform\", min = -1.0, max = 5.0 }\n",
+            vec!["`surface.stiffness_n_per_m`", "values greater than 0"],
+        ),
+        (
+            "an untruncated normal friction",
+            "[surface]\nfriction_coefficient = { dist = \"normal\", mean = 0.6, sd = 0.1 }\n",
+            vec!["`surface.friction_coefficient`", "give min and max"],
+        ),
+    ] {
+        dir.write("bad.toml", text);
+        let run = touchdown(
+            dir.path(),
+            &[
+                "sweep",
+                "--quiet",
+                "--scenario",
+                "bad.toml",
+                "--samples",
+                "10",
+                "--out",
+                "bad.arrow",
+            ],
+        );
+        assert_eq!(run.code, Some(2), "{name}: {run}");
+        for e in expect {
+            assert!(run.stderr.contains(e), "{name}: no {e:?} in {run}");
+        }
+        assert!(!dir.join("bad.arrow").exists(), "{name}");
+    }
+}
