@@ -861,7 +861,7 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
             t.push_str(&format!("  {name:<24} {value:>12.6} {unit} (drawn)\n"));
         }
     }
-    if scenario.surface.roughness.rms_height_m > 0.0 {
+    if scenario.rms_height_max_m() > 0.0 {
         t.push_str(&format!(
             "  {:<24} {:>12} (offset {:.3} m, {:.3} m)\n",
             "terrain_tile",

@@ -414,7 +414,7 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
         };
     }
     let rough = &scenario.surface.roughness;
-    let (terrain_tile, terrain_offset_m) = if rough.rms_height_m > 0.0 {
+    let (terrain_tile, terrain_offset_m) = if scenario.rms_height_max_m() > 0.0 {
         let tile = (stream(seed, "terrain_tile").next_u64() % rough.tiles as u64) as u32;
         let offset = [
             rough.tile_size_m * uniform01(&mut stream(seed, "terrain_offset_u_m")),

@@ -19,6 +19,7 @@ use kernels::block::{Block, LaneInit, LaneThrust};
 use kernels::isa::{Isa, Kernel, KernelKind, WithKernel};
 use kernels::lane::{Lane, MAX_LANES};
 use kernels::params::{HoneycombParams, LegParams, Params, lane};
+use kernels::terrain::Terrain;
 use kernels::vec3::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -155,6 +156,7 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
             (m.inertia_kg_m2.min_element() * m.thresholds.diverged_rate_rad_s).powi(2),
         ),
         terrain_top_m: lane(m.terrain_top_m()),
+        terrain_scale: lane(m.terrain.as_ref().map_or(1.0, Terrain::scale)),
         thrust: m.control.is_some(),
     }
 }

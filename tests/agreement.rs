@@ -276,6 +276,14 @@ fn kernels_agree_with_the_reference() {
             1000,
         ),
         (
+            // Each lane on the terrain at its own roughness (tiles of the largest, scaled).
+            "roughness drawn",
+            scenario(
+                "[surface.roughness]\nrms_height_m = { dist = \"uniform\", min = 0.0, max = 0.03 }",
+            ),
+            600,
+        ),
+        (
             // Stiff contact, slopes past the friction angle: the early `sliding` and
             // `bouncing` rules fire (in about 8 % of the samples).
             "MuJoCo-matched",

@@ -25,16 +25,18 @@ crush_strength_psi = { dist = \"uniform\", min = 2.0, max = 60.0 }
 t_max_s = 40.0
 ";
 
-/// `DRAWN` with every drawn parameter fixed at `values` (indexed by `Parameter`), written as
-/// numbers that read back to the same bits.
-fn fixed(values: &[f64]) -> String {
-    let mut text = DRAWN.to_string();
+/// `text` with every drawn parameter fixed at `values` (indexed by `Parameter`), written
+/// as numbers that read back to the same bits.
+fn fixed(text: &str, values: &[f64]) -> String {
+    let mut text = text.to_string();
     for p in Parameter::ALL {
-        let line = text
+        let Some(line) = text
             .lines()
             .find(|l| l.starts_with(&format!("{} = {{", p.name())))
-            .expect("each parameter drawn")
-            .to_string();
+            .map(str::to_string)
+        else {
+            continue;
+        };
         text = text.replace(&line, &format!("{} = {:?}", p.name(), values[p as usize]));
     }
     text
@@ -43,7 +45,11 @@ fn fixed(values: &[f64]) -> String {
 #[test]
 fn a_drawn_parameter_runs_as_the_same_value_fixed_row_for_row() {
     let drawn = Scenario::from_toml(DRAWN).expect("a valid scenario");
-    assert!(drawn.sampled.iter().all(Option::is_some), "all six drawn");
+    assert_eq!(
+        drawn.sampled.iter().filter(|d| d.is_some()).count(),
+        6,
+        "all six but the roughness drawn"
+    );
     let model = Model::new(&drawn);
     let n = 48;
     let mut rows = Vec::new();
@@ -60,14 +66,17 @@ fn a_drawn_parameter_runs_as_the_same_value_fixed_row_for_row() {
         let values = row.sample.parameters;
         // Each value drawn from its own distribution's support...
         for p in Parameter::ALL {
-            let (lo, hi) = drawn.sampled[p as usize].unwrap().support();
+            let Some(dist) = drawn.sampled[p as usize] else {
+                continue;
+            };
+            let (lo, hi) = dist.support();
             let x = values[p as usize];
             assert!((lo..=hi).contains(&x), "sample {i}: {} = {x}", p.name());
         }
         // ...and the sample of the scenario that fixes those values is the same sample: the
         // inputs (their streams do not depend on the parameters) and, in the kernels and in
         // the reference, every result, bit for bit.
-        let one = Scenario::from_toml(&fixed(&values)).expect("the fixed scenario");
+        let one = Scenario::from_toml(&fixed(DRAWN, &values)).expect("the fixed scenario");
         assert!(one.sampled.iter().all(Option::is_none));
         let one_model = Model::new(&one);
         let mut alone = Vec::new();
@@ -97,6 +106,47 @@ fn a_drawn_parameter_runs_as_the_same_value_fixed_row_for_row() {
     // dampers that crushed.
     assert!(outcomes.len() >= 2, "outcomes {outcomes:?}");
     assert!(crushed >= 5, "{crushed} samples crushed a damper");
+}
+
+#[test]
+fn a_drawn_roughness_scales_the_terrain_to_the_same_value_fixed() {
+    // The tiles are built once, for the largest roughness, and scaled to each sample's:
+    // the same surface as tiles built for that value, up to rounding (both are the same
+    // Gaussian field times a roughness over its own rms).
+    let text =
+        "[surface.roughness]\nrms_height_m = { dist = \"uniform\", min = 0.0, max = 0.03 }\n";
+    let drawn = Scenario::from_toml(text).expect("a valid scenario");
+    let model = Model::new(&drawn);
+    assert!(model.terrain.is_some());
+    for i in 0..20 {
+        let s = sampling::sample(&drawn, i);
+        let rms = s.parameters[Parameter::RmsHeightM as usize];
+        assert!((0.0..=0.03).contains(&rms));
+        let one_scenario = Scenario::from_toml(&fixed(text, &s.parameters)).unwrap();
+        let one = Model::new(&one_scenario);
+        // The same tile and offset: the terrain draws do not depend on the roughness.
+        let t = sampling::sample(&one_scenario, i);
+        assert_eq!(
+            (s.terrain_tile, s.terrain_offset_m, s.inputs),
+            (t.terrain_tile, t.terrain_offset_m, t.inputs)
+        );
+        let mine = model.for_sample(&s);
+        let (a, b) = (
+            mine.terrain.as_ref().unwrap(),
+            one.terrain.as_ref().unwrap(),
+        );
+        for k in 0..50 {
+            let (u, v) = (0.37 * f64::from(k), 0.11 * f64::from(k * k % 17));
+            let (x, y) = (a.height(1, u, v), b.height(1, u, v));
+            for (p, q) in [(x.0, y.0), (x.1, y.1), (x.2, y.2)] {
+                assert!(
+                    (p - q).abs() <= 1e-12 * (1.0 + q.abs()),
+                    "sample {i}: {p} vs {q}"
+                );
+            }
+        }
+        assert!((a.height_max_m() - b.height_max_m()).abs() < 1e-12);
+    }
 }
 
 #[test]

@@ -29,6 +29,9 @@ fn penetration<L: Lane, const TERRAIN: bool>(
                 s.tangent_u.dot(tip) + s.offset_u_m,
                 s.tangent_v.dot(tip) + s.offset_v_m,
             );
+            // Each lane's roughness (`Terrain::height`: the same products).
+            let k = p.terrain_scale;
+            let (h, dh_du, dh_dv) = (h * k, dh_du * k, dh_dv * k);
             let m = s.normal - s.tangent_u * dh_du - s.tangent_v * dh_dv;
             let inv = L::splat(1.0) / m.length();
             ((h - height) * inv, m * inv)

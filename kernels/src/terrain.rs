@@ -21,6 +21,9 @@ pub struct Terrain {
     inverse_spacing_per_m: f64,
     heights_m: Arc<[f64]>,
     height_max_m: f64,
+    /// Factor on every height (and slope): 1 for the tiles as built; a sample that draws
+    /// its roughness scales the tiles built for the largest (`scaled`).
+    scale: f64,
 }
 
 impl Terrain {
@@ -41,7 +44,23 @@ impl Terrain {
             inverse_spacing_per_m: 1.0 / spacing_m,
             heights_m: heights_m.into(),
             height_max_m,
+            scale: 1.0,
         }
+    }
+
+    /// These tiles with every height multiplied by `scale` (the tiles themselves shared).
+    #[must_use]
+    pub fn scaled(&self, scale: f64) -> Terrain {
+        Terrain {
+            scale,
+            ..self.clone()
+        }
+    }
+
+    /// The factor on the heights of the tiles as built (`scaled`).
+    #[must_use]
+    pub fn scale(&self) -> f64 {
+        self.scale
     }
 
     /// Number of tiles.
@@ -62,22 +81,31 @@ impl Terrain {
         self.spacing_m
     }
 
-    /// The highest node of all tiles: no point of the surface is higher.
+    /// The highest node of all tiles (scaled): no point of the surface is higher.
     #[must_use]
     pub fn height_max_m(&self) -> f64 {
-        self.height_max_m
+        self.height_max_m * self.scale
     }
 
-    /// All heights, tile after tile.
+    /// All heights as built (not scaled), tile after tile.
     #[must_use]
     pub fn heights_m(&self) -> &[f64] {
         &self.heights_m
     }
 
-    /// Height and its slopes `(h, dh/du, dh/dv)` at tangent coordinates `(u, v)` of `tile`.
+    /// Height and its slopes `(h, dh/du, dh/dv)` at tangent coordinates `(u, v)` of `tile`,
+    /// scaled (`scaled`).
     #[inline(always)]
     #[must_use]
     pub fn height(&self, tile: usize, u: f64, v: f64) -> (f64, f64, f64) {
+        let (h, dh_du, dh_dv) = self.unit_height(tile, u, v);
+        (h * self.scale, dh_du * self.scale, dh_dv * self.scale)
+    }
+
+    /// `height` of the tiles as built: the kernels scale it per lane.
+    #[inline(always)]
+    #[must_use]
+    pub fn unit_height(&self, tile: usize, u: f64, v: f64) -> (f64, f64, f64) {
         let n = self.nodes;
         let inv = self.inverse_spacing_per_m;
         let (fu, fv) = (u * inv, v * inv);
@@ -101,8 +129,9 @@ impl Terrain {
     }
 }
 
-/// Height and slopes of the terrain under every lane: one scalar lookup per lane (the
-/// nodes of different lanes are far apart in memory, so a gather is all SIMD could do).
+/// Height and slopes of the tiles as built under every lane (`Terrain::unit_height`; the
+/// caller scales them): one scalar lookup per lane (the nodes of different lanes are far
+/// apart in memory, so a gather is all SIMD could do).
 #[inline(always)]
 #[must_use]
 pub fn height_lanes<L: Lane>(
@@ -113,7 +142,7 @@ pub fn height_lanes<L: Lane>(
 ) -> (L, L, L) {
     let (mut h, mut du, mut dv) = (L::ZERO, L::ZERO, L::ZERO);
     for (i, &tile) in tile.iter().enumerate().take(L::LANES) {
-        let (hi, dui, dvi) = terrain.height(tile, u.lane(i), v.lane(i));
+        let (hi, dui, dvi) = terrain.unit_height(tile, u.lane(i), v.lane(i));
         h.set_lane(i, hi);
         du.set_lane(i, dui);
         dv.set_lane(i, dvi);

@@ -174,7 +174,22 @@ impl Model {
                 friction_damping_n_s_per_m: s.surface.friction_damping_n_s_per_m,
             },
             honeycomb,
-            terrain: crate::terrain::build(&s.surface.roughness, s.seed),
+            // A drawn roughness: the tiles of the largest, scaled to the median here and to
+            // each sample's own value by `for_sample`.
+            terrain: {
+                let largest = s.rms_height_max_m();
+                let rough = crate::scenario::Roughness {
+                    rms_height_m: largest,
+                    ..s.surface.roughness.clone()
+                };
+                crate::terrain::build(&rough, s.seed).map(|t| {
+                    if s.sampled[Parameter::RmsHeightM as usize].is_some() {
+                        t.scaled(s.surface.roughness.rms_height_m / largest)
+                    } else {
+                        t
+                    }
+                })
+            },
             step_s: s.simulation.step_s,
             flight_step_max_s: s.simulation.flight_step_max_s,
             t_max_s: s.simulation.t_max_s,
@@ -251,6 +266,12 @@ impl Model {
                         let plateau = x * PSI_PA * h.area_m2;
                         h.stages[0].1 = plateau;
                         h.peak_force_n = h.initial_peak_factor.map_or(plateau, |f| plateau * f);
+                    }
+                }
+                Parameter::RmsHeightM => {
+                    let largest = self.sampled[p as usize].map_or(x, |d| d.support().1);
+                    if let Some(t) = &mut m.terrain {
+                        *t = t.scaled(x / largest);
                     }
                 }
             }

@@ -162,10 +162,13 @@ pub enum Parameter {
     FrictionCoefficient,
     /// `damper.crush_strength_psi` (a single-stage cartridge).
     CrushStrengthPsi,
+    /// `surface.roughness.rms_height_m`: the terrain tiles, built for the largest value,
+    /// scaled to each sample's.
+    RmsHeightM,
 }
 
 /// Number of `Parameter`s.
-pub const PARAMETERS: usize = 6;
+pub const PARAMETERS: usize = 7;
 
 /// Names (the column's and the key's last part) and units of the parameters, in the order
 /// of `Parameter::ALL`.
@@ -176,6 +179,7 @@ pub const PARAMETER_FIELDS: [(&str, &str); PARAMETERS] = [
     ("damping_n_s_per_m", "N s/m"),
     ("friction_coefficient", "1"),
     ("crush_strength_psi", "psi"),
+    ("rms_height_m", "m"),
 ];
 
 impl Parameter {
@@ -187,6 +191,7 @@ impl Parameter {
         Parameter::DampingNSPerM,
         Parameter::FrictionCoefficient,
         Parameter::CrushStrengthPsi,
+        Parameter::RmsHeightM,
     ];
 
     /// The column name.
@@ -205,6 +210,7 @@ impl Parameter {
             Parameter::DampingNSPerM => "surface.damping_n_s_per_m",
             Parameter::FrictionCoefficient => "surface.friction_coefficient",
             Parameter::CrushStrengthPsi => "damper.crush_strength_psi",
+            Parameter::RmsHeightM => "surface.roughness.rms_height_m",
         }
     }
 }

@@ -457,7 +457,16 @@ impl Scenario {
             Parameter::DampingNSPerM => self.surface.damping_n_s_per_m,
             Parameter::FrictionCoefficient => self.surface.friction_coefficient,
             Parameter::CrushStrengthPsi => self.damper.stages[0].crush_strength_psi,
+            Parameter::RmsHeightM => self.surface.roughness.rms_height_m,
         }
+    }
+
+    /// The largest terrain roughness of any sample (the drawn one's largest value): the
+    /// terrain tiles are built for it, and a sample lands on a tile where it is above 0.
+    #[must_use]
+    pub fn rms_height_max_m(&self) -> f64 {
+        self.sampled[Parameter::RmsHeightM as usize]
+            .map_or(self.surface.roughness.rms_height_m, |d| d.support().1)
     }
 
     /// Number of legs of the lander.

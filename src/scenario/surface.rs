@@ -68,7 +68,13 @@ pub(super) fn read_surface(
     let roughness = match r.table("roughness")? {
         None => dr.clone(),
         Some(mut t) => {
-            let rms_height_m = t.non_negative("rms_height_m", dr.rms_height_m)?;
+            let rms_height_m = read_parameter(
+                &mut t,
+                Parameter::RmsHeightM,
+                dr.rms_height_m,
+                false,
+                sampled,
+            )?;
             let node_spacing_m = t.positive("node_spacing_m", dr.node_spacing_m)?;
             let smoothing_length_m = t.non_negative("smoothing_length_m", dr.smoothing_length_m)?;
             let tile_size_m = t.f64_where(
