@@ -186,11 +186,7 @@ struct Load {
 pub fn report(path: &Path) -> anyhow::Result<String> {
     let (schema, batches) = open_sweep(path)?;
     let meta = schema.metadata();
-    let legs = schema
-        .fields()
-        .iter()
-        .filter(|f| f.name().ends_with("_peak_normal_force_n"))
-        .count();
+    let legs = crate::output::read::leg_count(&schema);
     let mut counts = [0u64; Outcome::ALL.len()];
     let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
     let mut loads = [

@@ -323,11 +323,7 @@ pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analy
     }
     let varied = crate::sampling::design_inputs(&scenario);
     let d = varied.len();
-    let legs = schema
-        .fields()
-        .iter()
-        .filter(|f| f.name().ends_with("_peak_normal_force_n"))
-        .count();
+    let legs = crate::output::read::leg_count(&schema);
     // Per base point, the four outputs of its d + 2 rows (NaN until seen).
     let mut blocks: std::collections::BTreeMap<u64, Vec<[f64; 4]>> = Default::default();
     let mut rows = 0u64;

@@ -165,8 +165,13 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
 /// the sample's own parameters: `Model::for_sample`).
 #[must_use]
 pub fn lane_init(model: &Model, sample: &Sample) -> LaneInit {
+    sample_lane_init(&model.for_sample(sample), sample)
+}
+
+/// `lane_init` with the sample's own model (`Model::for_sample`) already made.
+fn sample_lane_init(model: &Model, sample: &Sample) -> LaneInit {
     let surface = Surface::of(sample);
-    let s = initial_state(&model.for_sample(sample), &surface, sample);
+    let s = initial_state(model, &surface, sample);
     LaneInit {
         position_m: s.body.position_m.to_array(),
         velocity_m_s: s.body.velocity_m_s.to_array(),
@@ -314,10 +319,12 @@ impl<K: Kernel> Worker<K> {
     fn refill(&mut self, scenario: &Scenario, model: &Model, feed: &Feed, i: usize) {
         if let Some(index) = feed.take() {
             let s = sampling::sample(scenario, index);
+            // The sample's own model, made once for its parameters and its initial state.
+            let own_model = model.for_sample(&s);
             if let Some(own) = &mut self.own {
-                own.copy_lane(i, &kernel_params(&model.for_sample(&s)));
+                own.copy_lane(i, &kernel_params(&own_model));
             }
-            self.block.load(i, &lane_init(model, &s));
+            self.block.load(i, &sample_lane_init(&own_model, &s));
             self.samples[i] = Some(s);
             if let Some(m) = &model.control {
                 let mut c = LaneControl::new(m, &s);

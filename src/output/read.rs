@@ -49,6 +49,16 @@ pub fn open(path: &Path, format: Format) -> anyhow::Result<(SchemaRef, Batches)>
     })
 }
 
+/// The number of legs of a sweep file with `schema` (its per-leg peak force columns).
+#[must_use]
+pub fn leg_count(schema: &arrow_schema::Schema) -> usize {
+    schema
+        .fields()
+        .iter()
+        .filter(|f| f.name().ends_with("_peak_normal_force_n"))
+        .count()
+}
+
 /// A sweep (or shard) file of touchdown at `path`, Arrow or Parquet: its schema with the
 /// metadata and its batches; any other file is refused, saying what it is.
 pub fn open_sweep(path: &Path) -> anyhow::Result<(SchemaRef, Batches)> {
