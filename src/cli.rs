@@ -133,6 +133,15 @@ pub struct SweepArgs {
     /// `touchdown sensitivity`).
     #[arg(long, value_name = "DESIGN", value_parser = ["independent", "sobol-sequence", "sobol-indices"])]
     pub design: Option<String>,
+    /// The user's own inputs: a table (CSV, Arrow or Parquet), one sample per row, in
+    /// order, its columns named as the sweep's input columns; what it does not give is
+    /// drawn from the scenario. The sweep runs its rows (--samples N: the first N).
+    #[arg(long, value_name = "TABLE")]
+    pub inputs: Option<PathBuf>,
+    /// Pass the table's other columns through to the output (without it, a column the
+    /// sweep does not know is refused).
+    #[arg(long, requires = "inputs", conflicts_with = "resume")]
+    pub keep_columns: bool,
     /// Worker threads (default: all cores).
     #[arg(long, value_name = "T", value_parser = parse_threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
@@ -263,6 +272,10 @@ pub struct TraceArgs {
     /// Seed of the sweep (overrides the scenario's `seed`).
     #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
+    /// The table of inputs the sweep ran (`sweep --inputs`), where it is no longer where
+    /// the sweep file says; with --scenario, row I of this table is the sample.
+    #[arg(long, value_name = "TABLE")]
+    pub inputs: Option<PathBuf>,
     /// Index of the sample to run, as in the sweep's `sample` column (accepts 1e6, 250000,
     /// 2.5e5).
     #[arg(long, value_name = "I", default_value = "0", value_parser = parse_count, allow_negative_numbers = true)]
@@ -472,7 +485,11 @@ fn load_scenario(path: Option<&PathBuf>, seed: Option<u64>) -> anyhow::Result<(S
 
 /// The scenario (with its seed) that a sweep or shard file `path` ran, and its text; checks
 /// that sample `index` is one of its samples.
-fn scenario_of_sweep(path: &Path, index: u64) -> anyhow::Result<(Scenario, String)> {
+fn scenario_of_sweep(
+    path: &Path,
+    index: u64,
+    inputs: Option<&Path>,
+) -> anyhow::Result<(Scenario, String)> {
     let (schema, _) = crate::output::read::open_sweep(path)?;
     let meta = schema.metadata();
     let get = |key: &str| {
@@ -489,6 +506,7 @@ fn scenario_of_sweep(path: &Path, index: u64) -> anyhow::Result<(Scenario, Strin
     let mut scenario = Scenario::from_toml(&text)
         .map_err(|e| anyhow::anyhow!("the scenario stored in {}: {e}", path.display()))?;
     scenario.seed = seed;
+    crate::table::reattach(&mut scenario, meta, inputs, path)?;
     if index >= samples {
         anyhow::bail!(
             "--sample {index}: {} has samples 0 to {} (its sweep ran {samples})",
@@ -511,8 +529,24 @@ fn scenario_of_sweep(path: &Path, index: u64) -> anyhow::Result<(Scenario, Strin
 fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
     crate::output::check_output_path(&args.out)?;
     let (scenario, text) = match &args.sweep {
-        Some(sweep) => scenario_of_sweep(sweep, args.sample)?,
-        None => load_scenario(args.scenario.as_ref(), args.seed)?,
+        Some(sweep) => scenario_of_sweep(sweep, args.sample, args.inputs.as_deref())?,
+        None => {
+            let (mut scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+            if let Some(path) = &args.inputs {
+                // A trace writes no kept columns: the table's other columns are let be.
+                crate::table::attach(&mut scenario, path, true)?;
+                let rows = scenario.table.as_ref().map_or(0, |t| t.rows);
+                if args.sample >= rows {
+                    anyhow::bail!(
+                        "--sample {}: the table of inputs {} has rows 0 to {}",
+                        args.sample,
+                        path.display(),
+                        rows - 1
+                    );
+                }
+            }
+            (scenario, text)
+        }
     };
     if scenario.simulation.precision == kernels::isa::Precision::F32 {
         eprintln!(
@@ -529,6 +563,7 @@ fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
         sweep_seed: scenario.seed,
         sample: &sample,
         summary: &summary,
+        table: scenario.table.as_deref(),
     };
     let rows = trace::write(&args.out, &model, &info, args.every)?;
     let mut text = describe(&scenario, &sample, &summary);
@@ -582,6 +617,12 @@ impl SweepPlan {
             let mut scenario = Scenario::from_toml(&from.scenario_toml)
                 .map_err(|e| anyhow::anyhow!("the scenario of {}: {e}", from.path.display()))?;
             scenario.seed = from.seed;
+            crate::table::reattach(
+                &mut scenario,
+                &from.meta,
+                args.inputs.as_deref(),
+                &from.path,
+            )?;
             let kernel = KernelKind {
                 isa: args.kernel.isa()?,
                 precision: scenario.simulation.precision,
@@ -628,7 +669,19 @@ impl SweepPlan {
                 (again, text)
             }
         };
-        let samples = args.samples.unwrap_or(scenario.samples);
+        let mut scenario = scenario;
+        if let Some(path) = &args.inputs {
+            crate::table::attach(&mut scenario, path, args.keep_columns)?;
+        }
+        let samples = match (&scenario.table, args.samples) {
+            (Some(t), Some(n)) if n > t.rows => anyhow::bail!(
+                "--samples {n}: the table of inputs {} has {} rows (one sample each)",
+                t.path.display(),
+                t.rows
+            ),
+            (Some(t), None) => t.rows,
+            (_, n) => n.unwrap_or(scenario.samples),
+        };
         if samples == 0 {
             anyhow::bail!("--samples must be at least 1");
         }
@@ -696,6 +749,14 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     });
     let control = crate::output::sweep::control_columns(scenario);
     let parameters = crate::output::sweep::parameter_columns(scenario);
+    let table = scenario
+        .table
+        .as_ref()
+        .map_or_else(Vec::new, |t| t.metadata());
+    let kept_columns = scenario
+        .table
+        .as_ref()
+        .map_or_else(Vec::new, |t| t.kept_fields());
     let info = SweepInfo {
         scenario_toml: &plan.text,
         seed: scenario.seed,
@@ -704,10 +765,21 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         shard: plan.shard,
         control: &control,
         parameters: &parameters,
+        table: &table,
+        kept: &kept_columns,
     };
-    let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?;
+    let mut writer = SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?
+        .with_table(scenario.table.clone());
+    let table_note = scenario.table.as_ref().map_or(String::new(), |t| {
+        format!(
+            ", inputs from {} ({} rows, {} columns)",
+            t.path.display(),
+            t.rows,
+            t.columns.len()
+        )
+    });
     eprintln!(
-        "touchdown sweep: {} samples, seed {}, kernel {} ({} landers per block{}), {threads} thread{}{shard_note}{resume_note}",
+        "touchdown sweep: {} samples, seed {}{table_note}, kernel {} ({} landers per block{}), {threads} thread{}{shard_note}{resume_note}",
         range.end - range.start,
         scenario.seed,
         plan.kernel.name(),
@@ -849,6 +921,17 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
         "sample {} of seed {} (sample seed {:#018x})\n\ninputs\n",
         sample.index, scenario.seed, sample.seed
     );
+    if let Some(table) = &scenario.table {
+        t.insert_str(
+            t.find('\n').unwrap_or(t.len()),
+            &format!(
+                ", row {} of the table of inputs {} (columns: {})",
+                sample.index,
+                table.path.display(),
+                table.columns.join(", ")
+            ),
+        );
+    }
     for ((name, unit), value) in INPUT_FIELDS.iter().zip(sample.inputs.to_array()) {
         t.push_str(&format!("  {name:<24} {value:>12.6} {unit}\n"));
     }

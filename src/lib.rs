@@ -18,5 +18,6 @@ pub mod scene;
 pub mod sensitivity;
 pub mod stability;
 pub mod sweep;
+pub mod table;
 pub mod terrain;
 pub mod view;

@@ -393,8 +393,14 @@ const SOBOL_KEY: u64 = 0x5eed_0f50_b01d_5e9a;
 
 /// The independent draw `index` of `scenario`'s inputs (with the quasi-random design, the
 /// inputs drawn from a distribution from point `index` of the Sobol sequence).
+///
+/// With a table of inputs (`Scenario::table`), row `index` gives the values it has (and,
+/// where it has them, the sample's seed and terrain); the others are drawn as without one.
 fn drawn(scenario: &Scenario, index: u64) -> Sample {
-    let seed = sample_seed(scenario.seed, index);
+    let table = scenario.table.as_deref();
+    let seed = table
+        .and_then(|t| t.sample_seed(index))
+        .unwrap_or_else(|| sample_seed(scenario.seed, index));
     let dists = value_dists(scenario);
     let grid = grid_indices(&grid_dists(scenario), index);
     let mut values = [0.0; VALUES];
@@ -402,6 +408,10 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
     // coordinate q of point `index` of the scrambled Sobol sequence.
     let mut dimension = 0;
     for (k, ((v, d), g)) in values.iter_mut().zip(&dists).zip(grid).enumerate() {
+        if let Some(x) = table.and_then(|t| t.value(k, index)) {
+            *v = x;
+            continue;
+        }
         // A fixed value draws nothing: its stream is left alone.
         *v = match d {
             Dist::Fixed(x) => *x,
@@ -423,6 +433,16 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
         (tile, offset)
     } else {
         (0, [0.0, 0.0])
+    };
+    let (terrain_tile, terrain_offset_m) = match table.map(|t| t.terrain(index)) {
+        Some((tile, [u, v])) => (
+            tile.unwrap_or(terrain_tile),
+            [
+                u.unwrap_or(terrain_offset_m[0]),
+                v.unwrap_or(terrain_offset_m[1]),
+            ],
+        ),
+        None => (terrain_tile, terrain_offset_m),
     };
     let mut s = Sample {
         index,

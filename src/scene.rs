@@ -283,16 +283,40 @@ impl Scene {
         let index: u64 = meta("touchdown.sample")?
             .parse()
             .map_err(|_| anyhow!("{}: its sample is not a whole number", path.display()))?;
-        let sample = crate::sampling::sample(&scenario, index);
-        let (slope_deg, downhill_azimuth_deg) = (
-            number("touchdown.input.slope_deg")?,
-            number("touchdown.input.downhill_azimuth_deg")?,
-        );
-        // The trace's own inputs decide the slope; the terrain tile comes from the sample
-        // drawn again (the same, for a trace of this engine).
-        let mut drawn = sample;
-        drawn.inputs.slope_deg = slope_deg;
-        drawn.inputs.downhill_azimuth_deg = downhill_azimuth_deg;
+        // The trace's own values decide (a table's, where its sweep ran one): its inputs
+        // and parameters, and its terrain tile and offset where it stores them (an older
+        // trace: drawn again, the same for a sweep without a table).
+        let mut drawn = crate::sampling::sample(&scenario, index);
+        let mut values = drawn.values();
+        for (k, v) in values.iter_mut().enumerate() {
+            let kind = if k < crate::scenario::INPUT_FIELDS.len() {
+                "input"
+            } else {
+                "parameter"
+            };
+            let key = format!("touchdown.{kind}.{}", crate::sampling::value_name(k));
+            if k < 2 || table.meta.contains_key(&key) {
+                *v = number(&key)?;
+            }
+        }
+        drawn.set_values(values);
+        if let Ok(tile) = meta("touchdown.terrain_tile") {
+            drawn.terrain_tile = tile.parse().map_err(|_| {
+                anyhow!("{}: its terrain tile is not a whole number", path.display())
+            })?;
+            drawn.terrain_offset_m = [
+                number("touchdown.terrain_offset_u_m")?,
+                number("touchdown.terrain_offset_v_m")?,
+            ];
+        }
+        // A parameter unlike the scenario's (a table's) is taken per sample as a drawn one.
+        for p in crate::scenario::Parameter::ALL {
+            let x = drawn.parameters[p as usize];
+            if scenario.sampled[p as usize].is_none() && !x.is_nan() && x != scenario.parameter(p) {
+                scenario.sampled[p as usize] =
+                    Some(crate::scenario::Dist::Uniform { min: x, max: x });
+            }
+        }
         let surface = Surface::of(&drawn);
         // With the sample's own parameters (a drawn CG height moves the footpads).
         let model = Model::new(&scenario).for_sample(&drawn).into_owned();
@@ -327,8 +351,8 @@ impl Scene {
             ),
             outcome,
             decided_s,
-            slope_deg,
-            downhill_azimuth_deg,
+            slope_deg: drawn.inputs.slope_deg,
+            downhill_azimuth_deg: drawn.inputs.downhill_azimuth_deg,
             surface,
             model,
             sketch,

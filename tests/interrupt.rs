@@ -107,8 +107,9 @@ fn uninterrupted(dir: &TempDir, args: &[&str], out: &str) {
     assert_eq!(run.code, Some(0), "{run}");
 }
 
-/// Resumes the sweep to `out` and checks that it ends as `whole`, with nothing left beside.
-fn resume_to_the_end(dir: &TempDir, out: &str, whole: &str, samples: u64) {
+/// Resumes the sweep to `out` and checks that it ends as `whole`, with nothing left beside
+/// but the files `inputs` (a scenario and a table).
+fn resume_to_the_end(dir: &TempDir, out: &str, whole: &str, samples: u64, inputs: &[&str]) {
     let resumed = touchdown(dir.path(), &["sweep", "--resume", out, "--quiet"]);
     assert_eq!(resumed.code, Some(0), "{resumed}");
     assert!(
@@ -137,7 +138,9 @@ fn resume_to_the_end(dir: &TempDir, out: &str, whole: &str, samples: u64) {
         counted, samples,
         "outcome counts of the resumed sweep:\n{resumed}"
     );
-    assert_eq!(dir.entries(), [out, "s.toml", whole]);
+    let mut expected: Vec<&str> = [&[out, whole][..], inputs].concat();
+    expected.sort_unstable();
+    assert_eq!(dir.entries(), expected);
 }
 
 #[test]
@@ -164,7 +167,7 @@ fn sigint_then_resume_gives_the_uninterrupted_file() {
     let done = check_interrupted(&dir, "r.arrow", run, 130, 0);
     assert!(done < 300_000);
 
-    resume_to_the_end(&dir, "r.arrow", "whole.arrow", 300_000);
+    resume_to_the_end(&dir, "r.arrow", "whole.arrow", 300_000, &["s.toml"]);
 }
 
 #[test]
@@ -207,5 +210,52 @@ fn sigterm_twice_then_resume_gives_the_uninterrupted_shard() {
         "{second} rows after the second stop, {first} after the first"
     );
 
-    resume_to_the_end(&dir, "r.parquet", "whole.parquet", 300_000);
+    resume_to_the_end(&dir, "r.parquet", "whole.parquet", 300_000, &["s.toml"]);
+}
+
+#[test]
+fn a_sweep_of_a_table_resumes_with_that_table_alone() {
+    let dir = TempDir::new("interrupt-table");
+    dir.write("s.toml", SHORT);
+    let mut text = String::from("slope_deg,note,yaw_deg\n");
+    for i in 0..300_000u32 {
+        text.push_str(&format!("{},n{},{}\n", i % 45, i % 7, i % 360));
+    }
+    dir.write("in.csv", &text);
+    let args = [
+        "sweep",
+        "--scenario",
+        "s.toml",
+        "--inputs",
+        "in.csv",
+        "--keep-columns",
+        "--threads",
+        "2",
+    ];
+    uninterrupted(&dir, &args, "whole.arrow");
+    let run = interrupt(
+        &dir,
+        &[&args[..], &["--out", "r.arrow"]].concat(),
+        "r.arrow",
+        "INT",
+    );
+    let done = check_interrupted(&dir, "r.arrow", run, 130, 0);
+    assert!(done < 300_000);
+
+    // Another table under the name is refused, and so is a table where none ran.
+    dir.write("in.csv", &text.replacen("n0", "n9", 1));
+    let refused = touchdown(dir.path(), &["sweep", "--resume", "r.arrow"]);
+    assert_eq!(refused.code, Some(2), "{refused}");
+    assert!(
+        refused.stderr.contains("is not the table of inputs"),
+        "{refused}"
+    );
+    dir.write("in.csv", &text);
+    resume_to_the_end(
+        &dir,
+        "r.arrow",
+        "whole.arrow",
+        300_000,
+        &["in.csv", "s.toml"],
+    );
 }

@@ -5,6 +5,7 @@ mod animate;
 mod cli;
 mod common;
 mod cpus;
+mod inputs;
 mod interrupt;
 mod lander;
 mod outcome_rules;

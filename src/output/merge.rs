@@ -14,7 +14,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 /// Schema metadata that every shard of one sweep shares, with what a message calls it.
-const SHARED_KEYS: [(&str, &str); 6] = [
+const SHARED_KEYS: [(&str, &str); 8] = [
     ("touchdown.kind", "kind of file"),
     ("touchdown.engine", "engine version"),
     (
@@ -24,6 +24,11 @@ const SHARED_KEYS: [(&str, &str); 6] = [
     ("touchdown.seed", "seed"),
     ("touchdown.samples", "sample count"),
     ("touchdown.scenario", "scenario"),
+    (
+        "touchdown.inputs.sha256",
+        "table of inputs (--inputs; the SHA-256 of its file)",
+    ),
+    ("touchdown.inputs.keep_columns", "--keep-columns"),
 ];
 
 /// A shard file, as its schema describes it.
@@ -71,7 +76,11 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         .collect();
     let meta = files[0].schema.metadata();
     let text = |key: &str| meta.get(key).map_or("", String::as_str);
-    let info = SweepInfo {
+    let table: Vec<(String, String)> = crate::table::METADATA_KEYS
+        .iter()
+        .filter_map(|k| meta.get(k).map(|v| ((*k).to_string(), v.clone())))
+        .collect();
+    let mut info = SweepInfo {
         scenario_toml: text("touchdown.scenario"),
         seed: number(&files[0], "touchdown.seed")?,
         samples: number(&files[0], "touchdown.samples")?,
@@ -79,13 +88,15 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         shard: None,
         control: &control,
         parameters: &parameters,
+        table: &table,
+        kept: &[],
     };
-    let legs = files[0]
-        .schema
-        .fields()
-        .iter()
-        .filter(|f| f.name().starts_with("leg") && f.name().ends_with("_peak_normal_force_n"))
-        .count();
+    let legs = super::read::leg_count(&files[0].schema);
+    // The columns passed through from a table of inputs come after the sweep's own.
+    let own = schema(legs, &info).fields().len();
+    let kept: Vec<arrow_schema::FieldRef> =
+        files[0].schema.fields().iter().skip(own).cloned().collect();
+    info.kept = &kept;
     let whole = schema(legs, &info);
     for f in &files {
         if f.schema.fields() != whole.fields() {
@@ -171,7 +182,7 @@ fn check_same_sweep(a: &ShardFile, b: &ShardFile) -> anyhow::Result<()> {
         let (x, y) = (ma.get(key), mb.get(key));
         if x != y {
             let shown = |v: Option<&String>| match v {
-                Some(v) if v.len() <= 40 && !v.contains('\n') => format!("{v:?}"),
+                Some(v) if v.len() <= 64 && !v.contains('\n') => format!("{v:?}"),
                 Some(_) => "another".to_string(),
                 None => "none".to_string(),
             };

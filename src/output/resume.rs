@@ -31,6 +31,8 @@ pub struct Interrupted {
     pub lane_type: String,
     /// Rows in the file: samples `first..first + rows` of the sweep.
     pub rows: u64,
+    /// Its schema metadata (the table of inputs it ran, if any: `table::reattach`).
+    pub meta: arrow_schema::Metadata,
 }
 
 impl Interrupted {
@@ -107,6 +109,7 @@ impl Interrupted {
             shard,
             lane_type: get("touchdown.lane_type")?,
             rows,
+            meta: meta.clone(),
             path,
         })
     }

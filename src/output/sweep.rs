@@ -48,8 +48,13 @@ pub struct SweepInfo<'a> {
     pub shard: Option<Shard>,
     /// The control loop's columns (`CONTROL_COLUMNS`) the file has: none without one.
     pub control: &'a [&'static str],
-    /// The columns of the parameters drawn per sample (`PARAMETER_FIELDS`), last.
+    /// The columns of the parameters drawn per sample (`PARAMETER_FIELDS`).
     pub parameters: &'a [&'static str],
+    /// What the file says of the table of inputs the sweep ran (`table::METADATA_KEYS`);
+    /// empty without one.
+    pub table: &'a [(String, String)],
+    /// The table's columns passed through (`--keep-columns`), last.
+    pub kept: &'a [arrow_schema::FieldRef],
 }
 
 /// The names of the parameter columns (`PARAMETER_FIELDS`) a sweep of `scenario` writes:
@@ -340,6 +345,7 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
             ));
         }
     }
+    fields.extend(info.kept.iter().map(|f| f.as_ref().clone()));
     let mut meta = BTreeMap::from([
         ("touchdown.engine".to_string(), ENGINE.to_string()),
         ("touchdown.kind".to_string(), "sweep".to_string()),
@@ -354,6 +360,7 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
             info.lane_type.to_string(),
         ),
     ]);
+    meta.extend(info.table.iter().cloned());
     if let Some(shard) = info.shard {
         let range = shard.range(info.samples);
         meta.insert(SHARD_KEYS[0].to_string(), shard.to_string());
@@ -365,8 +372,14 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
     Arc::new(Schema::new_with_metadata(fields, meta))
 }
 
-/// A record batch of `rows` in `schema`.
-pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<RecordBatch> {
+/// A record batch of `rows` in `schema`, the columns passed through from a table of
+/// inputs (`kept`, last in the schema) as they are.
+pub fn batch(
+    schema: &SchemaRef,
+    legs: usize,
+    rows: &[Row],
+    kept: Vec<ArrayRef>,
+) -> anyhow::Result<RecordBatch> {
     let n = rows.len();
     let u64s = |get: &dyn Fn(&Row) -> u64| {
         let mut b = UInt64Builder::with_capacity(n);
@@ -414,7 +427,8 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
     }
     let control = |r: &Row| r.summary.control.as_deref().copied().unwrap_or_default();
     let descent = |r: &Row| control(r).descent.unwrap_or_default();
-    for field in schema.fields().iter().skip(cols.len()) {
+    let computed = schema.fields().len() - kept.len();
+    for field in schema.fields()[..computed].iter().skip(cols.len()) {
         cols.push(match field.name().as_str() {
             "propellant_kg" => f64s(&|r| control(r).propellant_kg),
             "thrust_on_time_s" => f64s(&|r| control(r).on_time_s),
@@ -443,6 +457,7 @@ pub fn batch(schema: &SchemaRef, legs: usize, rows: &[Row]) -> anyhow::Result<Re
             },
         });
     }
+    cols.extend(kept);
     Ok(RecordBatch::try_new(schema.clone(), cols)?)
 }
 
@@ -461,6 +476,8 @@ pub struct SweepWriter {
     legs: usize,
     pending: Vec<Row>,
     rows: u64,
+    /// The table of inputs whose columns pass through (`--keep-columns`).
+    table: Option<Arc<crate::table::InputTable>>,
 }
 
 impl SweepWriter {
@@ -492,7 +509,15 @@ impl SweepWriter {
             legs,
             pending: Vec::with_capacity(BATCH_ROWS),
             rows: 0,
+            table: None,
         })
+    }
+
+    /// Passes the kept columns of `table` (`SweepInfo::kept`) through, row by row.
+    #[must_use]
+    pub fn with_table(mut self, table: Option<Arc<crate::table::InputTable>>) -> SweepWriter {
+        self.table = table;
+        self
     }
 
     /// Takes rows in sample order; writes every full batch.
@@ -510,7 +535,19 @@ impl SweepWriter {
         if self.pending.is_empty() {
             return Ok(());
         }
-        let b = batch(&self.schema, self.legs, &self.pending)?;
+        let first = self.pending[0].sample.index;
+        debug_assert!(
+            self.pending
+                .iter()
+                .enumerate()
+                .all(|(i, r)| r.sample.index == first + i as u64),
+            "rows in sample order"
+        );
+        let kept = match &self.table {
+            Some(t) => t.kept_rows(first, self.pending.len())?,
+            None => Vec::new(),
+        };
+        let b = batch(&self.schema, self.legs, &self.pending, kept)?;
         self.pending.clear();
         self.write_batch(&b)
     }

@@ -376,6 +376,8 @@ pub struct TraceInfo<'a> {
     pub sweep_seed: u64,
     pub sample: &'a Sample,
     pub summary: &'a Summary,
+    /// The table of inputs the sample's row came from, if any.
+    pub table: Option<&'a crate::table::InputTable>,
 }
 
 /// Runs `sample` with the reference model and writes every `every`-th step to `path`, the
@@ -435,7 +437,22 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
         ),
         ("touchdown.decided_s".to_string(), s.decided_s.to_string()),
         ("touchdown.every".to_string(), every.to_string()),
+        (
+            "touchdown.terrain_tile".to_string(),
+            info.sample.terrain_tile.to_string(),
+        ),
+        (
+            "touchdown.terrain_offset_u_m".to_string(),
+            info.sample.terrain_offset_m[0].to_string(),
+        ),
+        (
+            "touchdown.terrain_offset_v_m".to_string(),
+            info.sample.terrain_offset_m[1].to_string(),
+        ),
     ]);
+    if let Some(t) = &info.table {
+        meta.extend(t.metadata());
+    }
     for ((name, _), value) in crate::scenario::INPUT_FIELDS
         .iter()
         .zip(info.sample.inputs.to_array())

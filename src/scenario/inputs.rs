@@ -230,6 +230,7 @@ pub(super) fn read_parameter(
     positive: bool,
     sampled: &mut Sampled,
 ) -> Result<f64, ScenarioError> {
+    debug_assert_eq!(positive, PARAMETER_POSITIVE[which as usize]);
     let key = which.name();
     let (number, values, min) = if positive {
         (
@@ -296,6 +297,52 @@ const ANY: Range = Range {
     text: "any finite value",
 };
 
+/// The range each input (`INPUT_FIELDS`, in order) must stay in.
+const INPUT_RANGES: [Range; 12] = [
+    Range {
+        min: 0.0,
+        max: 90.0,
+        max_open: true,
+        text: "values from 0 up to, not including, 90 deg",
+    },
+    ANY,
+    Range {
+        min: 0.0,
+        max: f64::INFINITY,
+        max_open: false,
+        text: "values of at least 0 m",
+    },
+    ANY,
+    ANY,
+    ANY,
+    ANY,
+    ANY,
+    ANY,
+    ANY,
+    ANY,
+    ANY,
+];
+
+/// Whether each parameter (`Parameter::ALL`) must be greater than 0 (else at least 0).
+const PARAMETER_POSITIVE: [bool; PARAMETERS] = [true, true, true, false, false, true, false];
+
+/// Whether `x` is a value that value `k` of a sample (`sampling::Sample::values`: the
+/// inputs, then the parameters) may take; if not, what the values may be.
+pub fn check_value(k: usize, x: f64) -> Result<(), &'static str> {
+    let range = if k < INPUT_RANGES.len() {
+        INPUT_RANGES[k]
+    } else if PARAMETER_POSITIVE[k - INPUT_RANGES.len()] {
+        Range::at_least(f64::MIN_POSITIVE, "values greater than 0")
+    } else {
+        Range::at_least(0.0, "values of at least 0")
+    };
+    if x.is_finite() && range.holds(x) {
+        Ok(())
+    } else {
+        Err(range.text)
+    }
+}
+
 pub(super) fn read_inputs(
     top: &mut Reader,
     d: &Inputs<Dist>,
@@ -303,30 +350,7 @@ pub(super) fn read_inputs(
     let Some(mut r) = top.table("inputs")? else {
         return Ok(*d);
     };
-    let ranges = [
-        Range {
-            min: 0.0,
-            max: 90.0,
-            max_open: true,
-            text: "values from 0 up to, not including, 90 deg",
-        },
-        ANY,
-        Range {
-            min: 0.0,
-            max: f64::INFINITY,
-            max_open: false,
-            text: "values of at least 0 m",
-        },
-        ANY,
-        ANY,
-        ANY,
-        ANY,
-        ANY,
-        ANY,
-        ANY,
-        ANY,
-        ANY,
-    ];
+    let ranges = INPUT_RANGES;
     let defaults = d.to_array();
     let mut out = defaults;
     for (i, (name, _)) in INPUT_FIELDS.iter().enumerate() {

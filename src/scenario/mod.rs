@@ -19,7 +19,9 @@ mod thrusters;
 pub use control::{AttitudeHold, Control, Descent, HoldDown, LAW_PARAMETERS, Sensors, Target};
 pub use damper::{Damper, Stage, StrutAxes};
 pub use initial::{AttitudeReference, Initial, Start};
-pub use inputs::{Dist, INPUT_FIELDS, Inputs, PARAMETER_FIELDS, PARAMETERS, Parameter, Sampled};
+pub use inputs::{
+    Dist, INPUT_FIELDS, Inputs, PARAMETER_FIELDS, PARAMETERS, Parameter, Sampled, check_value,
+};
 pub use lander::{Geometry, Lander};
 pub use outcome::Outcome;
 pub use simulation::Simulation;
@@ -130,6 +132,9 @@ pub struct Scenario {
     pub propulsion: Propulsion,
     /// The control loop that fires them, if any.
     pub control: Option<Control>,
+    /// The table of the user's own inputs (`sweep --inputs`): row `i` gives sample `i` the
+    /// values of its columns (`crate::table::attach`); none in a scenario file.
+    pub table: Option<std::sync::Arc<crate::table::InputTable>>,
 }
 
 impl Default for Scenario {
@@ -235,6 +240,7 @@ impl Default for Scenario {
                 misalignment_sd_deg: 0.0,
             },
             control: None,
+            table: None,
         }
     }
 }
@@ -356,6 +362,7 @@ impl Scenario {
             thrusters,
             propulsion,
             control,
+            table: None,
         };
         s.check_leg_counts()?;
         s.check_can_land()?;
