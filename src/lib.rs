@@ -21,3 +21,4 @@ pub mod sweep;
 pub mod table;
 pub mod terrain;
 pub mod view;
+pub mod weighting;

@@ -183,7 +183,12 @@ struct Load {
 }
 
 /// The report of the sweep file at `path`, as Markdown.
-pub fn report(path: &Path) -> anyhow::Result<String> {
+/// With `terrain` (a `--slope-distribution` and its text), the outcome shares on that
+/// terrain follow the sweep's own (`weighting`).
+pub fn report(
+    path: &Path,
+    terrain: Option<(&crate::weighting::SlopeDistribution, &str)>,
+) -> anyhow::Result<String> {
     let (schema, batches) = open_sweep(path)?;
     let meta = schema.metadata();
     let legs = crate::output::read::leg_count(&schema);
@@ -217,6 +222,7 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
         },
     ];
     let mut thrust = Thrust::default();
+    let mut slopes: Vec<(f64, Outcome)> = Vec::new();
     for b in batches {
         let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
         let f = |name: &str| float_column(&b, name, path);
@@ -243,6 +249,9 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
             let o = Outcome::from_name(name)
                 .ok_or_else(|| anyhow!("{}: unknown outcome {name:?}", path.display()))?;
             counts[o as usize] += 1;
+            if terrain.is_some() {
+                slopes.push((slope.value(i), o));
+            }
             let relative = relative_azimuth_deg(azimuth.value(i), yaw.value(i));
             sectors[sector_of(relative)].push((slope.value(i), o == Outcome::Stable));
             let max_of =
@@ -286,6 +295,29 @@ pub fn report(path: &Path) -> anyhow::Result<String> {
             100.0 * lo,
             100.0 * hi
         );
+    }
+    if let Some((terrain, text)) = terrain {
+        if meta.contains_key(crate::table::METADATA_KEYS[1]) {
+            anyhow::bail!(
+                "--slope-distribution: {} cannot be weighed onto a terrain: its slopes come \
+                 from a table of inputs, not from a distribution",
+                path.display()
+            );
+        }
+        let scenario = meta
+            .get("touchdown.scenario")
+            .ok_or_else(|| anyhow!("{}: no touchdown.scenario in its metadata", path.display()))
+            .and_then(|text| {
+                crate::scenario::Scenario::from_toml(text)
+                    .map_err(|e| anyhow!("the scenario stored in {}: {e}", path.display()))
+            })?;
+        let w = crate::weighting::weigh(&scenario, &slopes, terrain).map_err(|e| {
+            anyhow!(
+                "--slope-distribution: {} cannot be weighed onto this terrain: {e}",
+                path.display()
+            )
+        })?;
+        let _ = write!(t, "\n{}", crate::weighting::markdown(&w, terrain, text));
     }
     let _ = writeln!(
         t,

@@ -23,3 +23,4 @@ mod sweep_cli;
 mod thrust;
 mod user_law;
 mod validation;
+mod weighting;
