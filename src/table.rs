@@ -277,16 +277,17 @@ pub fn attach(scenario: &mut Scenario, path: &Path, keep_columns: bool) -> anyho
                     (a.min(x), b.max(x))
                 });
             // Where the scenario draws it already and the table stays within its
-            // distribution's range, nothing that depends on the range changes (the tiles'
-            // roughness, the worst corner): the table's values run as the scenario's own.
-            let (min, max) = match scenario.sampled[p as usize] {
-                Some(d) => {
-                    let (a, b) = d.support();
-                    (a.min(min), b.max(max))
-                }
-                None => (min, max),
+            // distribution's range, the distribution stays: nothing that depends on it
+            // changes (the tiles' roughness, the worst corner, a grid's digits), and the
+            // table's values run as the scenario's own.
+            scenario.sampled[p as usize] = match scenario.sampled[p as usize] {
+                Some(d) if d.support().0 <= min && max <= d.support().1 => Some(d),
+                Some(d) => Some(crate::scenario::Dist::Uniform {
+                    min: d.support().0.min(min),
+                    max: d.support().1.max(max),
+                }),
+                None => Some(crate::scenario::Dist::Uniform { min, max }),
             };
-            scenario.sampled[p as usize] = Some(crate::scenario::Dist::Uniform { min, max });
         }
     }
     scenario.table = Some(Arc::new(table));
@@ -362,6 +363,12 @@ fn role(name: &str, keep: bool, scenario: &Scenario, path: &Path) -> anyhow::Res
                 Parameter::CrushStrengthPsi if !scenario.damper.enabled => {
                     return Err(refuse(
                         "the scenario has damper.enabled = false, no cartridge to crush",
+                    ));
+                }
+                Parameter::CrushStrengthPsi if scenario.damper.stages.len() > 1 => {
+                    return Err(refuse(
+                        "the scenario's damper has several stages (damper.stages): one crush \
+                         strength per sample is for a single-stage cartridge",
                     ));
                 }
                 Parameter::MassKg | Parameter::CgHeightM if scenario.control.is_some() => {
@@ -637,6 +644,27 @@ impl Source {
                 path.display(),
                 j + 1
             );
+        }
+        // The CSV reader skips blank lines, which in a one-column table are empty values:
+        // refuse one before the last row (outside a quoted field: after an even number of
+        // quotes), as it would shift every later row's sample.
+        let text = std::str::from_utf8(&bytes).unwrap_or_default();
+        let lines: Vec<&str> = text.lines().collect();
+        let last = lines
+            .iter()
+            .rposition(|l| !l.trim().is_empty())
+            .unwrap_or(0);
+        let mut quotes = 0;
+        for (i, l) in lines[..last].iter().enumerate() {
+            if i > 0 && quotes % 2 == 0 && l.trim().is_empty() {
+                bail!(
+                    "{}: line {} is blank: every row needs its values (a blank line would \
+                     shift every later row's sample)",
+                    path.display(),
+                    i + 1
+                );
+            }
+            quotes += l.matches('"').count();
         }
         Ok(Source::Csv {
             header,

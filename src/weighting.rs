@@ -21,6 +21,10 @@ use std::path::Path;
 /// weighted shares leave them out, so they are off by at most that much.
 pub const UNCOVERED_MAX: f64 = 1e-3;
 
+/// The smallest scale of a parametric slope distribution, deg (a narrower one is a fixed
+/// slope, which a density cannot weigh).
+const MIN_SCALE_DEG: f64 = 1e-3;
+
 /// A terrain's distribution of slopes, deg, on [0, 90).
 #[derive(Debug, Clone, PartialEq)]
 pub enum SlopeDistribution {
@@ -91,15 +95,15 @@ impl SlopeDistribution {
         };
         let bad = match d {
             SlopeDistribution::Uniform { min, max } => !(0.0 <= min && min < max && max <= 90.0),
-            SlopeDistribution::Normal { sd, .. } => sd <= 0.0,
-            SlopeDistribution::Rayleigh { sigma } => sigma <= 0.0,
-            SlopeDistribution::Exponential { mean } => mean <= 0.0,
+            SlopeDistribution::Normal { sd, .. } => sd < MIN_SCALE_DEG,
+            SlopeDistribution::Rayleigh { sigma } => sigma < MIN_SCALE_DEG,
+            SlopeDistribution::Exponential { mean } => mean < MIN_SCALE_DEG,
             SlopeDistribution::Bins(_) => false,
         };
         if bad {
             bail!(
                 "--slope-distribution {text}: uniform needs 0 <= MIN < MAX <= 90, the others a \
-                 scale (SD, SIGMA, MEAN) above 0"
+                 scale (SD, SIGMA, MEAN) of at least {MIN_SCALE_DEG} deg"
             );
         }
         if d.cdf(90.0) <= 0.0 {
@@ -117,6 +121,10 @@ impl SlopeDistribution {
                 .map(|&(a, b, p)| p * ((x.min(b) - a) / (b - a)).clamp(0.0, 1.0))
                 .sum(),
             SlopeDistribution::Uniform { min, max } => ((x - min) / (max - min)).clamp(0.0, 1.0),
+            // Below a negative mean, from the upper tail, where the CDF keeps its digits.
+            SlopeDistribution::Normal { mean, sd } if *mean < 0.0 => {
+                normal_cdf(mean / sd) - normal_cdf((mean - x) / sd)
+            }
             SlopeDistribution::Normal { mean, sd } => {
                 normal_cdf((x - mean) / sd) - normal_cdf(-mean / sd)
             }
@@ -306,6 +314,7 @@ fn sampling_density(scenario: &Scenario) -> anyhow::Result<(Density, f64, f64)> 
                 max.min(90.0),
             ))
         }
+        Dist::Uniform { .. } => bail!("its slope_deg is a range of width 0: one slope"),
         d => bail!(
             "its slope_deg is {} (a weighting needs slopes drawn from a uniform or normal \
              distribution)",
@@ -489,6 +498,10 @@ mod tests {
             SlopeDistribution::Normal {
                 mean: 20.0,
                 sd: 8.0,
+            },
+            SlopeDistribution::Normal {
+                mean: -45.0,
+                sd: 5.0,
             },
             SlopeDistribution::Rayleigh { sigma: 12.0 },
             SlopeDistribution::Exponential { mean: 9.0 },

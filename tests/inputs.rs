@@ -588,6 +588,11 @@ fn bad_tables_are_refused_before_any_work_naming_row_and_column() {
         ),
         csv("no rows", "slope_deg,yaw_deg\n", &["the table has no rows"]),
         csv(
+            "a blank line (an empty value in a one-column table)",
+            "slope_deg\n1\n\n3\n",
+            &["in.csv: line 3 is blank"],
+        ),
+        csv(
             "a seed written as a float",
             "sample_seed\n12.5\n",
             &["column sample_seed", "not a whole number"],

@@ -222,7 +222,7 @@ fn sweeps_that_do_not_cover_the_terrain_or_cannot_be_weighed_are_refused() {
         (
             "u.arrow",
             "rayleigh:-1",
-            "a scale (SD, SIGMA, MEAN) above 0",
+            "a scale (SD, SIGMA, MEAN) of at least",
         ),
         ("u.arrow", "none.csv", "nor a readable CSV file"),
     ] {
