@@ -44,22 +44,9 @@ pub fn wilson_interval(k: u64, n: u64) -> (f64, f64) {
     if n == 0 {
         return (0.0, 1.0);
     }
-    let z = Z95;
-    let (n, p) = (n as f64, k as f64 / n as f64);
-    let centre = (p + z * z / (2.0 * n)) / (1.0 + z * z / n);
-    let half = z / (1.0 + z * z / n) * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt();
+    let (lo, hi) = crate::weighting::wilson(k as f64 / n as f64, n as f64);
     // At k = 0 and k = n the bounds are 0 and 1 exactly; rounding would leave 1e-18.
-    let lo = if k == 0 {
-        0.0
-    } else {
-        (centre - half).max(0.0)
-    };
-    let hi = if k as f64 == n {
-        1.0
-    } else {
-        (centre + half).min(1.0)
-    };
-    (lo, hi)
+    (if k == 0 { 0.0 } else { lo }, if k == n { 1.0 } else { hi })
 }
 
 /// The allowable slope of one sector's samples.

@@ -81,12 +81,6 @@ impl InputTable {
         self.values[k].as_ref().map(|c| c[row as usize])
     }
 
-    /// Whether the table gives value `k` of its samples.
-    #[must_use]
-    pub fn has_value(&self, k: usize) -> bool {
-        self.values[k].is_some()
-    }
-
     /// The generator seed of row `row`, where the table gives it.
     #[must_use]
     pub fn sample_seed(&self, row: u64) -> Option<u64> {
@@ -416,9 +410,9 @@ fn role(name: &str, keep: bool, scenario: &Scenario, path: &Path) -> anyhow::Res
 }
 
 /// Whether `name` is a column that a sweep writes as a result (of any lander, with any
-/// control loop).
+/// control loop); `sample` and `sample_seed` have roles of their own (`role`).
 fn is_result_column(name: &str) -> bool {
-    const RESULTS: [&str; 13] = [
+    const RESULTS: [&str; 11] = [
         "outcome",
         "decided_s",
         "steps",
@@ -430,8 +424,6 @@ fn is_result_column(name: &str) -> bool {
         "bounces",
         "first_contact_s",
         "max_penetration_m",
-        "sample",
-        "sample_seed",
     ];
     let leg = name.strip_prefix("leg").is_some_and(|rest| {
         let digits = rest.chars().take_while(char::is_ascii_digit).count();
