@@ -40,6 +40,10 @@ pub enum Command {
     /// peak CG acceleration and longest damper stroke, from a sweep run with
     /// `design = "sobol-indices"` (Markdown on stdout).
     Sensitivity(SensitivityArgs),
+    /// Run the sweep at each of several values of one scenario key (footpad radius, CG
+    /// height, crush strength...) and tabulate outcome shares and the allowable slope per
+    /// sector against it (Arrow, Markdown, PNG with the static limit).
+    Study(crate::study::StudyArgs),
     /// Join the shard files of one sweep (`sweep --shard K/N`) into the file the sweep
     /// writes when run in one process.
     Merge(MergeArgs),
@@ -201,7 +205,7 @@ impl KernelChoice {
     }
 }
 
-fn parse_kernel(s: &str) -> Result<KernelChoice, String> {
+pub(crate) fn parse_kernel(s: &str) -> Result<KernelChoice, String> {
     if s == "auto" {
         return Ok(KernelChoice::Auto);
     }
@@ -313,14 +317,14 @@ pub fn parse_count(s: &str) -> Result<u64, String> {
 }
 
 /// A seed: a whole number a scenario file can hold too (at most 2^63 - 1).
-fn parse_seed(s: &str) -> Result<u64, String> {
+pub(crate) fn parse_seed(s: &str) -> Result<u64, String> {
     match parse_count(s)? {
         n if n > i64::MAX as u64 => Err(format!("must be at most {}", i64::MAX)),
         n => Ok(n),
     }
 }
 
-fn parse_threads(s: &str) -> Result<usize, String> {
+pub(crate) fn parse_threads(s: &str) -> Result<usize, String> {
     match parse_count(s)? {
         0 => Err("must be at least 1".to_string()),
         n if n > 1024 => Err("must be at most 1024".to_string()),
@@ -365,6 +369,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Trace(args) => run_trace(&args),
         Command::Sweep(args) => run_sweep(&args),
+        Command::Study(args) => crate::study::run(&args),
         Command::Report(args) => {
             let terrain = args
                 .slope_distribution
@@ -478,7 +483,10 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
 
 /// A scenario from its file (or the default) with the command line's seed applied, and the
 /// text to store as its provenance.
-fn load_scenario(path: Option<&PathBuf>, seed: Option<u64>) -> anyhow::Result<(Scenario, String)> {
+pub(crate) fn load_scenario(
+    path: Option<&PathBuf>,
+    seed: Option<u64>,
+) -> anyhow::Result<(Scenario, String)> {
     let (mut scenario, text) = match path {
         None => (Scenario::default(), DEFAULT_TOML.to_string()),
         Some(p) => {
@@ -609,58 +617,25 @@ impl std::fmt::Display for Interrupted {
 impl std::error::Error for Interrupted {}
 
 /// What a sweep runs: its settings, and where it starts when it resumes.
-struct SweepPlan {
-    scenario: Scenario,
-    text: String,
-    samples: u64,
-    shard: Option<Shard>,
-    format: crate::output::sweep::Format,
-    out: PathBuf,
+pub(crate) struct SweepPlan {
+    pub scenario: Scenario,
+    pub text: String,
+    pub samples: u64,
+    pub shard: Option<Shard>,
+    pub format: crate::output::sweep::Format,
+    pub out: PathBuf,
     /// The kernel it runs with (the precision is the scenario's).
-    kernel: KernelKind,
+    pub kernel: KernelKind,
     /// The interrupted sweep whose first rows this one takes over.
-    resume: Option<crate::output::resume::Interrupted>,
+    pub resume: Option<crate::output::resume::Interrupted>,
+    /// What to run to continue where a signal stops this sweep.
+    pub continue_with: String,
 }
 
 impl SweepPlan {
     fn new(args: &SweepArgs) -> anyhow::Result<SweepPlan> {
         if let Some(out) = &args.resume {
-            let from = crate::output::resume::Interrupted::read(out)?;
-            let mut scenario = Scenario::from_toml(&from.scenario_toml)
-                .map_err(|e| anyhow::anyhow!("the scenario of {}: {e}", from.path.display()))?;
-            scenario.seed = from.seed;
-            crate::table::reattach(
-                &mut scenario,
-                &from.meta,
-                args.inputs.as_deref(),
-                &from.path,
-            )?;
-            let kernel = KernelKind {
-                isa: args.kernel.isa()?,
-                precision: scenario.simulation.precision,
-            };
-            if from.lane_type != kernel.arithmetic() {
-                anyhow::bail!(
-                    "{} was computed with {} kernels, the {} kernel here is {}, whose rows \
-                     differ in the last bits: resume it on a machine like the first, or run \
-                     the sweep again",
-                    from.path.display(),
-                    from.lane_type,
-                    kernel.name(),
-                    kernel.arithmetic()
-                );
-            }
-            crate::output::check_output_path(out)?;
-            return Ok(SweepPlan {
-                scenario,
-                text: from.scenario_toml.clone(),
-                samples: from.samples,
-                shard: from.shard,
-                format: from.format,
-                out: out.clone(),
-                kernel,
-                resume: Some(from),
-            });
+            return SweepPlan::resuming(out, args.inputs.as_deref(), args.kernel);
         }
         crate::output::check_output_path(&args.out)?;
         let (scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
@@ -710,6 +685,48 @@ impl SweepPlan {
             out: args.out.clone(),
             kernel,
             resume: None,
+            continue_with: format!("touchdown sweep --resume {}", args.out.display()),
+        })
+    }
+
+    /// The plan that finishes the interrupted sweep to `out` (`sweep --resume`), its table
+    /// of inputs reread where the sweep read it (or at `inputs`).
+    pub(crate) fn resuming(
+        out: &Path,
+        inputs: Option<&Path>,
+        kernel: KernelChoice,
+    ) -> anyhow::Result<SweepPlan> {
+        let from = crate::output::resume::Interrupted::read(out)?;
+        let mut scenario = Scenario::from_toml(&from.scenario_toml)
+            .map_err(|e| anyhow::anyhow!("the scenario of {}: {e}", from.path.display()))?;
+        scenario.seed = from.seed;
+        crate::table::reattach(&mut scenario, &from.meta, inputs, &from.path)?;
+        let kernel = KernelKind {
+            isa: kernel.isa()?,
+            precision: scenario.simulation.precision,
+        };
+        if from.lane_type != kernel.arithmetic() {
+            anyhow::bail!(
+                "{} was computed with {} kernels, the {} kernel here is {}, whose rows \
+                 differ in the last bits: resume it on a machine like the first, or run \
+                 the sweep again",
+                from.path.display(),
+                from.lane_type,
+                kernel.name(),
+                kernel.arithmetic()
+            );
+        }
+        crate::output::check_output_path(out)?;
+        Ok(SweepPlan {
+            scenario,
+            text: from.scenario_toml.clone(),
+            samples: from.samples,
+            shard: from.shard,
+            format: from.format,
+            out: out.to_path_buf(),
+            kernel,
+            resume: Some(from),
+            continue_with: format!("touchdown sweep --resume {}", out.display()),
         })
     }
 }
@@ -717,7 +734,7 @@ impl SweepPlan {
 /// The signal that asked the sweep to stop (0: none yet). A first SIGINT or SIGTERM sets
 /// it; a second one ends the process at once (the unfinished file keeps its temporary
 /// name, so nothing looks complete that is not).
-fn stop_on_signals() -> anyhow::Result<std::sync::Arc<std::sync::atomic::AtomicUsize>> {
+pub(crate) fn stop_on_signals() -> anyhow::Result<std::sync::Arc<std::sync::atomic::AtomicUsize>> {
     use signal_hook::consts::{SIGINT, SIGTERM};
     use std::sync::Arc;
     use std::sync::atomic::{AtomicBool, AtomicUsize};
@@ -731,16 +748,85 @@ fn stop_on_signals() -> anyhow::Result<std::sync::Arc<std::sync::atomic::AtomicU
     Ok(which)
 }
 
-fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
-    use std::io::IsTerminal;
-    let plan = SweepPlan::new(args)?;
-    let (scenario, samples) = (&plan.scenario, plan.samples);
-    let threads = args
-        .threads
+/// The pool of `--threads` workers (default: one per core).
+pub(crate) fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
+    let threads = threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, std::num::NonZero::get));
-    let pool = rayon::ThreadPoolBuilder::new()
+    Ok(rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
-        .build()?;
+        .build()?)
+}
+
+fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
+    let plan = SweepPlan::new(args)?;
+    let pool = worker_pool(args.threads)?;
+    let threads = pool.current_num_threads();
+    let stop = stop_on_signals()?;
+    let run = RunOptions {
+        pool: &pool,
+        stop: &stop,
+        progress: !args.quiet,
+        banner: true,
+        auto_kernel: matches!(args.kernel, KernelChoice::Auto),
+    };
+    let done = execute(&plan, &run)?;
+    let wall = done.wall_s;
+    let rows = done.rows;
+    let mut t = format!(
+        "samples                 {rows}\nwall time               {wall:.2} s\nsamples/s               {:.0}\nlander-steps/s          {:.3e} ({:.3e} per thread)\nmean steps per sample   {:.0}\nlane occupancy          {:.3}\noutcomes\n",
+        done.computed as f64 / wall,
+        done.stats.busy_lane_steps as f64 / wall,
+        done.stats.busy_lane_steps as f64 / wall / threads as f64,
+        done.steps as f64 / rows as f64,
+        done.stats.occupancy(),
+    );
+    for (o, c) in Outcome::ALL.iter().zip(done.counts) {
+        t.push_str(&format!(
+            "  {:<10} {c:>10}  {:>6.2} %\n",
+            o.name(),
+            100.0 * c as f64 / rows as f64
+        ));
+    }
+    t.push_str(&format!("wrote {}\n", shown(&plan.out)));
+    say(&t, &plan.out);
+    warn_untouched(&done, &plan.scenario, "");
+    Ok(())
+}
+
+/// How `execute` runs a plan: on which pool, stopped by which signal flag
+/// (`stop_on_signals`), and what it shows on stderr.
+pub(crate) struct RunOptions<'a> {
+    pub pool: &'a rayon::ThreadPool,
+    pub stop: &'a std::sync::Arc<std::sync::atomic::AtomicUsize>,
+    /// A progress bar (when stderr is a terminal).
+    pub progress: bool,
+    /// The line naming the samples, seed, kernel and threads.
+    pub banner: bool,
+    /// Whether the kernel is the widest the CPU runs (`--kernel auto`), for the banner.
+    pub auto_kernel: bool,
+}
+
+/// What `execute` did.
+pub(crate) struct Executed {
+    /// Rows in the file (kept from an interrupted run and computed now).
+    pub rows: u64,
+    /// Samples computed by this run.
+    pub computed: u64,
+    pub wall_s: f64,
+    pub stats: crate::sweep::LaneStats,
+    /// Rows per outcome, in the order of `Outcome::ALL`.
+    pub counts: [u64; Outcome::ALL.len()],
+    pub steps: u64,
+    /// Samples of this run that never touched the surface.
+    pub untouched: u64,
+}
+
+/// Runs `plan` and writes its file. A signal (`run.stop`) ends it with an `Interrupted`
+/// error whose message says how to continue (`plan.continue_with`).
+pub(crate) fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Executed> {
+    use std::io::IsTerminal;
+    let (scenario, samples) = (&plan.scenario, plan.samples);
+    let threads = run.pool.current_num_threads();
     let model = Model::new(scenario);
     let range = plan.shard.map_or(0..samples, |s| s.range(samples));
     let kept = plan.resume.as_ref().map_or(0, |r| r.kept_rows());
@@ -790,19 +876,21 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
             t.columns.len()
         )
     });
-    eprintln!(
-        "touchdown sweep: {} samples, seed {}{table_note}, kernel {} ({} landers per block{}), {threads} thread{}{shard_note}{resume_note}",
-        range.end - range.start,
-        scenario.seed,
-        plan.kernel.name(),
-        plan.kernel.precision.lanes(),
-        if matches!(args.kernel, KernelChoice::Auto) {
-            "; the widest this CPU runs"
-        } else {
-            ""
-        },
-        if threads == 1 { "" } else { "s" },
-    );
+    if run.banner {
+        eprintln!(
+            "touchdown sweep: {} samples, seed {}{table_note}, kernel {} ({} landers per block{}), {threads} thread{}{shard_note}{resume_note}",
+            range.end - range.start,
+            scenario.seed,
+            plan.kernel.name(),
+            plan.kernel.precision.lanes(),
+            if run.auto_kernel {
+                "; the widest this CPU runs"
+            } else {
+                ""
+            },
+            if threads == 1 { "" } else { "s" },
+        );
+    }
     let mut counts = [0u64; Outcome::ALL.len()];
     let mut steps = 0u64;
     if let Some(from) = &plan.resume {
@@ -813,7 +901,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         steps += kept_steps;
     }
     let todo = (range.start + kept)..range.end;
-    let bar = if args.quiet || !std::io::stderr().is_terminal() {
+    let bar = if !run.progress || !std::io::stderr().is_terminal() {
         indicatif::ProgressBar::hidden()
     } else {
         indicatif::ProgressBar::new(todo.end - todo.start).with_style(
@@ -830,19 +918,17 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
             ),
         )
     };
-    let stop = stop_on_signals()?;
     let start = std::time::Instant::now();
     let mut computed = 0u64;
-    // Samples of this run that never touched the surface (all `bouncing`, without a bounce).
     let mut untouched = 0u64;
-    let ran = pool.install(|| {
+    let ran = run.pool.install(|| {
         crate::sweep::run_until(
             scenario,
             &model,
             plan.kernel.isa,
             todo.clone(),
             CHUNK,
-            &stop,
+            run.stop,
             |rows| {
                 for r in &rows {
                     counts[r.summary.outcome as usize] += 1;
@@ -857,7 +943,7 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
     })?;
     bar.finish_and_clear();
     if ran.end < todo.end {
-        let signal = stop.load(std::sync::atomic::Ordering::Relaxed);
+        let signal = run.stop.load(std::sync::atomic::Ordering::Relaxed);
         let (rows, path) = writer.finish_interrupted()?;
         let name = if signal == signal_hook::consts::SIGTERM as usize {
             "SIGTERM"
@@ -867,10 +953,10 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
         let message = match path {
             Some(path) => format!(
                 "interrupted by {name}: {rows} of {} samples done, in {} (a valid file); \
-                 continue with: touchdown sweep --resume {}",
+                 continue with: {}",
                 range.end - range.start,
                 path.display(),
-                plan.out.display()
+                plan.continue_with
             ),
             None => format!(
                 "interrupted by {name}: {rows} of {} samples done, written to {} as a valid \
@@ -895,35 +981,30 @@ fn run_sweep(args: &SweepArgs) -> anyhow::Result<()> {
             )
         })?;
     }
-    let wall = start.elapsed().as_secs_f64();
-    let mut t = format!(
-        "samples                 {rows}\nwall time               {wall:.2} s\nsamples/s               {:.0}\nlander-steps/s          {:.3e} ({:.3e} per thread)\nmean steps per sample   {:.0}\nlane occupancy          {:.3}\noutcomes\n",
-        computed as f64 / wall,
-        ran.stats.busy_lane_steps as f64 / wall,
-        ran.stats.busy_lane_steps as f64 / wall / threads as f64,
-        steps as f64 / rows as f64,
-        ran.stats.occupancy(),
-    );
-    for (o, c) in Outcome::ALL.iter().zip(counts) {
-        t.push_str(&format!(
-            "  {:<10} {c:>10}  {:>6.2} %\n",
-            o.name(),
-            100.0 * c as f64 / rows as f64
-        ));
-    }
-    t.push_str(&format!("wrote {}\n", shown(&plan.out)));
-    say(&t, &plan.out);
-    if untouched > 0 {
+    Ok(Executed {
+        rows,
+        computed,
+        wall_s: start.elapsed().as_secs_f64(),
+        stats: ran.stats,
+        counts,
+        steps,
+        untouched,
+    })
+}
+
+/// Warns of samples that never touched the surface.
+/// `at` names the sweep among several (a study's value), or is empty.
+pub(crate) fn warn_untouched(done: &Executed, scenario: &Scenario, at: &str) {
+    if done.untouched > 0 {
         eprintln!(
-            "touchdown: warning: {untouched} of the {computed} samples run never touched the \
+            "touchdown: warning: {at}{} of the {} samples run never touched the \
              surface before simulation.t_max_s = {} s (their first_contact_s is empty: they \
              end bouncing, or tipped if they turned past 90 deg in flight). A release too \
              high or an upward velocity error for the run's length? See \
              initial.clearance_m, inputs.release_height_m and inputs.velocity_error_z_m_s",
-            scenario.simulation.t_max_s
+            done.untouched, done.computed, scenario.simulation.t_max_s
         );
     }
-    Ok(())
 }
 
 /// The inputs and summary of a sample, for people.
@@ -1038,7 +1119,7 @@ fn say(text: &str, out: &Path) {
 }
 
 /// Writes to stdout; a closed pipe (`| head`) is not an error.
-fn print_out(text: &str) {
+pub(crate) fn print_out(text: &str) {
     let mut out = std::io::stdout().lock();
     let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
 }

@@ -17,6 +17,7 @@ pub mod scenario;
 pub mod scene;
 pub mod sensitivity;
 pub mod stability;
+pub mod study;
 pub mod sweep;
 pub mod table;
 pub mod terrain;

@@ -41,7 +41,12 @@ fn sample_column(path: &Path) -> Vec<u64> {
 
 /// Starts `touchdown ARGS` in `dir`, sends `signal` (`INT`, `TERM`) once it has run for a
 /// while, and returns its exit code and stderr.
-fn interrupt(dir: &TempDir, args: &[&str], out: &str, signal: &str) -> (Option<i32>, String) {
+pub(crate) fn interrupt(
+    dir: &TempDir,
+    args: &[&str],
+    out: &str,
+    signal: &str,
+) -> (Option<i32>, String) {
     let mut child = Command::new(crate::common::BIN)
         .args(args)
         .current_dir(dir.path())

@@ -19,6 +19,7 @@ mod scenarios;
 mod sensitivity;
 mod shards;
 mod studies;
+mod study;
 mod sweep_cli;
 mod thrust;
 mod user_law;

@@ -4,6 +4,7 @@
 //! no system fonts, no Python.
 
 mod sensitivity;
+mod study;
 mod sweep;
 mod trace;
 
@@ -21,6 +22,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 pub use sensitivity::sensitivity_chart;
+pub(crate) use study::study_chart;
 
 /// The font family every picture uses (registered from the embedded DejaVu Sans).
 pub(crate) const FONT: &str = "sans-serif";
@@ -39,7 +41,7 @@ pub(crate) const OUTCOME_COLOURS: [RGBColor; 5] = [
 ];
 
 /// Line colours of the series of one panel (x, y, z; or legs 0, 1, ...).
-const SERIES_COLOURS: [RGBColor; 8] = [
+pub(crate) const SERIES_COLOURS: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
