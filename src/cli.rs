@@ -53,6 +53,8 @@ pub enum Command {
     /// Write a trace file as one self-contained HTML page: the lander in 3D (drag to orbit,
     /// wheel to zoom), a time slider with play and pause, and the histories as charts.
     View(ViewArgs),
+    /// Find the allowable slope per azimuth sector directly, by adaptive sampling.
+    Boundary(crate::boundary::BoundaryArgs),
 }
 
 /// Flags of `touchdown animate`.
@@ -313,14 +315,14 @@ pub fn parse_count(s: &str) -> Result<u64, String> {
 }
 
 /// A seed: a whole number a scenario file can hold too (at most 2^63 - 1).
-fn parse_seed(s: &str) -> Result<u64, String> {
+pub(crate) fn parse_seed(s: &str) -> Result<u64, String> {
     match parse_count(s)? {
         n if n > i64::MAX as u64 => Err(format!("must be at most {}", i64::MAX)),
         n => Ok(n),
     }
 }
 
-fn parse_threads(s: &str) -> Result<usize, String> {
+pub(crate) fn parse_threads(s: &str) -> Result<usize, String> {
     match parse_count(s)? {
         0 => Err("must be at least 1".to_string()),
         n if n > 1024 => Err("must be at most 1024".to_string()),
@@ -365,6 +367,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Trace(args) => run_trace(&args),
         Command::Sweep(args) => run_sweep(&args),
+        Command::Boundary(args) => crate::boundary::run(&args),
         Command::Report(args) => {
             let terrain = args
                 .slope_distribution
@@ -478,7 +481,10 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
 
 /// A scenario from its file (or the default) with the command line's seed applied, and the
 /// text to store as its provenance.
-fn load_scenario(path: Option<&PathBuf>, seed: Option<u64>) -> anyhow::Result<(Scenario, String)> {
+pub(crate) fn load_scenario(
+    path: Option<&PathBuf>,
+    seed: Option<u64>,
+) -> anyhow::Result<(Scenario, String)> {
     let (mut scenario, text) = match path {
         None => (Scenario::default(), DEFAULT_TOML.to_string()),
         Some(p) => {
@@ -590,7 +596,7 @@ fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
 }
 
 /// Samples per task of the sweep's workers.
-const CHUNK: u64 = 1024;
+pub(crate) const CHUNK: u64 = 1024;
 
 /// A sweep stopped by a signal; its rows so far are in a valid file beside the output.
 #[derive(Debug)]
@@ -1038,7 +1044,7 @@ fn say(text: &str, out: &Path) {
 }
 
 /// Writes to stdout; a closed pipe (`| head`) is not an error.
-fn print_out(text: &str) {
+pub(crate) fn print_out(text: &str) {
     let mut out = std::io::stdout().lock();
     let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
 }
