@@ -150,16 +150,23 @@ impl Stop {
 }
 
 /// Whether a sector whose samples give `allowable` is finished, on slopes from `min` to
-/// `max` with `tolerance` (deg), having run `used` of at most `limit` samples.
+/// `max` with `tolerance` (deg), its last round drawn up to `last_upper`, having run `used`
+/// of at most `limit` samples.
+///
+/// An interval whose upper end lies within half the tolerance below `last_upper` (short of
+/// `max`) is not final: there the pooled counts fall, and the upper end may be where the
+/// last round's samples end rather than where the stable share does.
 #[must_use]
 pub fn stop_rule(
     allowable: Allowable,
     (min, max): (f64, f64),
     tolerance: f64,
-    used: u64,
-    limit: u64,
+    last_upper: f64,
+    (used, limit): (u64, u64),
 ) -> Option<Stop> {
+    let censored = |high: f64| last_upper < max && high > last_upper - 0.5 * tolerance;
     let rule = match allowable {
+        Allowable::Slope { high_deg, .. } if censored(high_deg) => None,
         Allowable::Slope {
             slope_deg,
             low_deg,
@@ -173,7 +180,9 @@ pub fn stop_rule(
                 (high_deg - low <= tolerance).then_some(Stop::Tolerance)
             }
         }
-        Allowable::NoSlope { below_deg } => (below_deg - min <= tolerance).then_some(Stop::NoSlope),
+        Allowable::NoSlope { below_deg } => {
+            (below_deg - min <= tolerance && !censored(below_deg)).then_some(Stop::NoSlope)
+        }
         Allowable::TooFewSamples(_) => None,
     };
     rule.or((used >= limit).then_some(Stop::SampleLimit))
@@ -185,8 +194,9 @@ pub fn stop_rule(
 /// Not the upper end alone: the samples of a round stop at its upper slope, so the pooled
 /// counts fall there, and a round drawn below an upper end that is too low would confirm
 /// it (its samples narrow the interval up to it, and only earlier rounds speak above it):
-/// the interval closes on the wrong slope. With the margin, the last round has samples
-/// above the upper end it stops at, as a uniform sweep has.
+/// the interval would close on the wrong slope. With the margin, an upper end at the last
+/// round's (`stop_rule`: not final) moves up by at least the tolerance a round, and the
+/// round a sector stops after has samples above its upper end, as a uniform sweep has.
 #[must_use]
 pub fn next_upper(allowable: Allowable, (min, max): (f64, f64), tolerance: f64) -> f64 {
     let (low, high) = match allowable {
@@ -363,8 +373,8 @@ pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
                 sector.allowable,
                 range,
                 args.tolerance,
-                sector.used,
-                args.max_samples_per_sector,
+                upper[k],
+                (sector.used, args.max_samples_per_sector),
             ));
         }
         if progress {
@@ -520,7 +530,7 @@ mod tests {
             });
             used += 2000;
             allowable = pooled_allowable(&rounds);
-            if let Some(stop) = stop_rule(allowable, (0.0, 45.0), 0.5, used, 400_000) {
+            if let Some(stop) = stop_rule(allowable, (0.0, 45.0), 0.5, upper, (used, 400_000)) {
                 return (allowable, used, stop);
             }
         }

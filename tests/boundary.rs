@@ -20,13 +20,13 @@ t_max_s = 20.0
 hold_time_s = 0.5
 ";
 
+/// A row of an allowable-slope table: samples, allowable slope, 95 % interval.
+type Sector = (u64, Option<f64>, Option<(f64, f64)>);
+
 /// The rows of an allowable-slope table: per sector, the samples, the allowable slope (if
 /// any) and the 95 % interval (low, high), from the columns `samples`, `allowable` and
 /// `interval` (0-based, after the sector's).
-fn allowable_rows(
-    markdown: &str,
-    [samples, allowable, interval]: [usize; 3],
-) -> Vec<(u64, Option<f64>, Option<(f64, f64)>)> {
+fn allowable_rows(markdown: &str, [samples, allowable, interval]: [usize; 3]) -> Vec<Sector> {
     let section = markdown
         .split("## Allowable slope")
         .nth(1)
@@ -116,7 +116,7 @@ fn boundary_agrees_with_the_report_of_a_uniform_sweep() {
     // uniform sweep would need (w_uniform / w_boundary)^2 times its 150 000 samples for the
     // boundary's widths (mean widths over the sectors compared): the boundary must have
     // used at most half that.
-    let width = |rows: &[(u64, Option<f64>, Option<(f64, f64)>)]| {
+    let width = |rows: &[Sector]| {
         let w: Vec<f64> = rows
             .iter()
             .zip(&uniform)
