@@ -57,6 +57,8 @@ pub enum Command {
     /// Write a trace file as one self-contained HTML page: the lander in 3D (drag to orbit,
     /// wheel to zoom), a time slider with play and pause, and the histories as charts.
     View(ViewArgs),
+    /// Find the allowable slope per azimuth sector directly, by adaptive sampling.
+    Boundary(crate::boundary::BoundaryArgs),
 }
 
 /// Flags of `touchdown animate`.
@@ -370,6 +372,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Trace(args) => run_trace(&args),
         Command::Sweep(args) => run_sweep(&args),
         Command::Study(args) => crate::study::run(&args),
+        Command::Boundary(args) => crate::boundary::run(&args),
         Command::Report(args) => {
             let terrain = args
                 .slope_distribution
@@ -598,7 +601,7 @@ fn run_trace(args: &TraceArgs) -> anyhow::Result<()> {
 }
 
 /// Samples per task of the sweep's workers.
-const CHUNK: u64 = 1024;
+pub(crate) const CHUNK: u64 = 1024;
 
 /// A sweep stopped by a signal; its rows so far are in a valid file beside the output.
 #[derive(Debug)]

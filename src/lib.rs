@@ -4,6 +4,7 @@
 //! `reference` is the scalar physics of one lander, `output` writes Arrow files.
 
 pub mod animate;
+pub mod boundary;
 pub mod cli;
 pub mod compare;
 pub mod control;

@@ -118,28 +118,44 @@ pub fn allowable_slope(samples: &mut [(f64, bool)]) -> Allowable {
     }
     samples.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut stable = 0u64;
-    let (mut best, mut low, mut high, mut first) = (None, None, None, None);
-    for (i, (slope, ok)) in samples.iter().enumerate() {
+    let at_or_below = samples.iter().enumerate().filter_map(|(i, (slope, ok))| {
         stable += u64::from(*ok);
         let n = i + 1;
         let last_of_slope = samples.get(n).is_none_or(|next| next.0 > *slope);
-        if !last_of_slope || n < MIN_SAMPLES {
+        last_of_slope.then_some((*slope, n as u64, stable))
+    });
+    allowable_of_counts(at_or_below, samples.len())
+}
+
+/// `allowable_slope`'s rules applied to `(s, n, k)` for each candidate slope `s` in
+/// increasing order: `n` samples at or below `s` count, `k` of them stable. `total` is the
+/// sector's sample count, for `TooFewSamples` when no slope has `MIN_SAMPLES` at or below
+/// it. `boundary` gives it the counts of samples pooled over rounds drawn below different
+/// slopes.
+pub(crate) fn allowable_of_counts(
+    at_or_below: impl IntoIterator<Item = (f64, u64, u64)>,
+    total: usize,
+) -> Allowable {
+    let (mut best, mut low, mut high, mut first) = (None, None, None, None);
+    for (slope, n, stable) in at_or_below {
+        if n < MIN_SAMPLES as u64 {
             continue;
         }
-        first.get_or_insert(*slope);
-        let (lo, hi) = wilson_interval(stable, n as u64);
+        first.get_or_insert(slope);
+        let (lo, hi) = wilson_interval(stable, n);
         if stable as f64 >= ALLOWABLE_STABLE * n as f64 {
-            best = Some(*slope);
+            best = Some(slope);
         }
         if lo >= ALLOWABLE_STABLE {
-            low = Some(*slope);
+            low = Some(slope);
         }
         if hi >= ALLOWABLE_STABLE {
-            high = Some(*slope);
+            high = Some(slope);
         }
     }
-    // `first` is set: the sector has at least MIN_SAMPLES samples.
-    let resolved = first.unwrap_or(0.0);
+    let Some(resolved) = first else {
+        return Allowable::TooFewSamples(total);
+    };
     match best {
         None => Allowable::NoSlope {
             below_deg: high.unwrap_or(resolved),

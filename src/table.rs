@@ -16,7 +16,7 @@
 //! and column. The file's SHA-256 goes into the sweep's metadata, and `--resume`, `merge`
 //! and `trace` hold a sweep to the table it ran.
 
-use crate::sampling::{VALUES, value_name};
+use crate::sampling::{Sample, VALUES, value_name};
 use crate::scenario::{Design, Geometry, INPUT_FIELDS, Parameter, Scenario, check_value};
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, ArrayRef, RecordBatch, cast::AsArray, types::*};
@@ -135,6 +135,39 @@ impl InputTable {
             .zip(values)
             .map(|(k, v)| ((*k).to_string(), v))
             .collect()
+    }
+
+    /// A table in memory that replays `samples` exactly, row `i` sample `i`: every value
+    /// (`Sample::values`), the generator seed and the terrain tile and offset. `boundary`
+    /// runs its candidates through the kernels this way, each with its slope redrawn.
+    #[must_use]
+    pub fn from_samples(samples: &[Sample]) -> InputTable {
+        let values: Vec<[f64; VALUES]> = samples.iter().map(Sample::values).collect();
+        InputTable {
+            path: PathBuf::from("(boundary search)"),
+            format: "memory",
+            sha256: String::new(),
+            rows: samples.len() as u64,
+            columns: (0..VALUES)
+                .map(|k| value_name(k).to_string())
+                .chain(
+                    [
+                        "sample_seed",
+                        "terrain_tile",
+                        "terrain_offset_u_m",
+                        "terrain_offset_v_m",
+                    ]
+                    .map(String::from),
+                )
+                .collect(),
+            keep_columns: false,
+            values: std::array::from_fn(|k| Some(values.iter().map(|v| v[k]).collect())),
+            sample_seed: Some(samples.iter().map(|s| s.seed).collect()),
+            terrain_tile: Some(samples.iter().map(|s| s.terrain_tile).collect()),
+            terrain_offset_m: [0, 1]
+                .map(|j| Some(samples.iter().map(|s| s.terrain_offset_m[j]).collect())),
+            kept: None,
+        }
     }
 
     /// Reads the table at `path` for a sweep of `scenario`, checking every value.

@@ -2,6 +2,7 @@
 
 mod agreement;
 mod animate;
+mod boundary;
 mod cli;
 mod common;
 mod cpus;
