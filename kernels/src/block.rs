@@ -1,8 +1,9 @@
 //! The state of `L::LANES` landers, field per field (structure of arrays), with the surface
 //! each lane lands on and what its outcome tracking remembers.
 
+use crate::lane::lane;
 use crate::lane::{Lane, MAX_LANES, Mask, all_false};
-use crate::params::{Params, lane};
+use crate::params::Params;
 use crate::vec3::{Mat3, Quat, Vec3, mat3_of};
 
 /// What a leg remembers between steps, per lane.

@@ -4,8 +4,22 @@
 use crate::block::LegLanes;
 use crate::honeycomb;
 use crate::lane::{Lane, Mask};
-use crate::params::Params;
+use crate::params::{LegParams, Params};
 use crate::vec3::Vec3;
+
+/// Footpad position in B: `tip_m - s strut_axis` at stroke `s`. Without dampers the stroke
+/// stays 0 and the footpad where the parameters put it.
+#[inline(always)]
+pub(crate) fn tip_in_body<L: Lane, const DAMPERS: bool>(
+    leg: &LegParams<L>,
+    stroke_m: L,
+) -> Vec3<L> {
+    if DAMPERS {
+        leg.tip_m - leg.strut_axis * stroke_m
+    } else {
+        leg.tip_m
+    }
+}
 
 /// The force of one leg on every lane (zero where `contact` is false), with its normal
 /// magnitude and the mask of lanes where the footpad slips. Updates the friction anchor and

@@ -167,3 +167,16 @@ pub fn max_into<L: Lane>(acc: L, x: L) -> L {
 pub fn min_into<L: Lane>(acc: L, x: L) -> L {
     x.fast_min(acc)
 }
+
+/// Broadcasts a scalar, outside the kernels: through memory, with no SIMD instruction
+/// (code outside the kernels is compiled for the baseline CPU, and an instruction of the
+/// kernel's set there would be an out-of-line call that leaves the vector unit dirty).
+#[inline]
+#[must_use]
+pub fn lane<L: Lane>(x: f64) -> L {
+    let mut l = L::ZERO;
+    for i in 0..L::LANES {
+        l.set_lane(i, x);
+    }
+    l
+}

@@ -2,9 +2,9 @@
 //! and in the same order (see there for the rules).
 
 use crate::block::{Block, LegStep};
+use crate::contact::tip_in_body;
 use crate::lane::{Lane, Mask, all_false, all_true, max_into, min_into};
 use crate::params::Params;
-use crate::step::tip_in_body;
 use crate::vec3::{Mat3, Vec3};
 
 /// Outcome codes, in the order of the reference's `Outcome::ALL`.

@@ -2,9 +2,9 @@
 //! each with its own step length. The reference's `step` module does the same in scalar.
 
 use crate::block::{Block, SurfaceLanes};
-use crate::contact;
+use crate::contact::{self, tip_in_body};
 use crate::lane::{Lane, Mask, all_false, min_into};
-use crate::params::{LegParams, Params};
+use crate::params::Params;
 use crate::rigid_body;
 use crate::terrain::height_lanes;
 use crate::vec3::Vec3;
@@ -37,20 +37,6 @@ fn penetration<L: Lane, const TERRAIN: bool>(
             ((h - height) * inv, m * inv)
         }
         _ => (-height, s.normal),
-    }
-}
-
-/// Footpad position in B: `tip_m - s strut_axis` at stroke `s`. Without dampers the stroke
-/// stays 0 and the footpad where the parameters put it.
-#[inline(always)]
-pub(crate) fn tip_in_body<L: Lane, const DAMPERS: bool>(
-    leg: &LegParams<L>,
-    stroke_m: L,
-) -> Vec3<L> {
-    if DAMPERS {
-        leg.tip_m - leg.strut_axis * stroke_m
-    } else {
-        leg.tip_m
     }
 }
 

@@ -1,8 +1,8 @@
 //! Structure-of-arrays 3-vectors and quaternions over lanes, with the few operations the
 //! physics needs (no trigonometry).
 
+use crate::lane::lane;
 use crate::lane::{Lane, Mask};
-use crate::params::lane;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
 /// A 3-vector per lane.
