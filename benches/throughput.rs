@@ -14,12 +14,12 @@ use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_mai
 use kernels::block::Block;
 use kernels::isa::{Isa, Kernel, KernelKind, Precision, WithKernel};
 use std::hint::black_box;
-use touchdown::reference::model::Surface;
 use touchdown::reference::outcome::Tracker;
 use touchdown::reference::step::{step, step_size};
 use touchdown::reference::{Model, StepReport, initial_state};
 use touchdown::sampling::sample;
 use touchdown::scenario::Scenario;
+use touchdown::slope::Surface;
 use touchdown::sweep::{kernel_params, lane_init};
 
 const STEPS: u64 = 1000;
@@ -34,7 +34,7 @@ fn kernel_vs_reference(c: &mut Criterion) {
     struct Bench<'a, 'b> {
         group: &'a mut criterion::BenchmarkGroup<'b, criterion::measurement::WallTime>,
         model: &'a Model,
-        samples: &'a [touchdown::sampling::Sample],
+        samples: &'a [touchdown::scenario::Sample],
         key: &'static str,
         precision: Precision,
     }

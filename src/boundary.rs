@@ -1,4 +1,4 @@
-//! `touchdown boundary`: the allowable slope of each azimuth sector (`report::allowable_slope`)
+//! `touchdown boundary`: the allowable slope of each azimuth sector (`stats::allowable_slope`)
 //! found directly, by adaptive sampling, with its 95 % interval.
 //!
 //! The allowable slope is cumulative: it is read from the samples at or below a slope, over
@@ -9,17 +9,20 @@
 //! interval. A sample of a round with upper slope `u` is a draw of the distribution
 //! conditioned on `[slope_min, s]` for every `s <= u` at which its slope lies at or below
 //! `s`, so the rounds pool at each candidate slope (`pooled_allowable`) and the report's
-//! rules (`report::allowable_of_counts`) give the estimate and interval after each round.
+//! rules (`stats::allowable_of_counts`) give the estimate and interval after each round.
 
+use crate::dist::quantile;
 use crate::reference::Model;
 use crate::reference::outcome::Outcome;
-use crate::report::{
+use crate::rng::{stream, uniform_open01};
+use crate::sampling;
+use crate::scenario::InputTable;
+use crate::scenario::{Design, Dist};
+use crate::scenario::{Sample, law_grid_size};
+use crate::stats::{
     Allowable, MIN_SAMPLES, SECTOR_DEG, SECTORS, allowable_of_counts, relative_azimuth_deg,
     sector_of,
 };
-use crate::sampling::{self, Sample};
-use crate::scenario::{Design, Dist};
-use crate::table::InputTable;
 use anyhow::bail;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -66,7 +69,7 @@ pub struct Round {
     pub samples: Vec<(f64, bool)>,
 }
 
-/// The allowable slope of a sector's `rounds`, by `report::allowable_slope`'s rules, with
+/// The allowable slope of a sector's `rounds`, by `stats::allowable_slope`'s rules, with
 /// the counts at each candidate slope `s` (each distinct sample slope) pooled over the
 /// rounds whose upper slope is at least `s`: their samples at or below `s` are draws of
 /// the slope distribution conditioned on `[slope_min, s]`, as a uniform sweep's are. With one
@@ -228,8 +231,8 @@ fn conditioned(dist: Dist, upper: f64) -> Dist {
 /// else stays. At the top of the range it is the sample's own slope.
 #[must_use]
 pub fn with_slope_below(mut sample: Sample, dist: Dist, upper: f64) -> Sample {
-    let u = sampling::uniform_open01(&mut sampling::stream(sample.seed, "slope_deg"));
-    sample.inputs.slope_deg = sampling::quantile(&conditioned(dist, upper), u, 0);
+    let u = uniform_open01(&mut stream(sample.seed, "slope_deg"));
+    sample.inputs.slope_deg = quantile(&conditioned(dist, upper), u, 0);
     sample
 }
 
@@ -270,7 +273,7 @@ pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
             dist.toml()
         );
     }
-    if sampling::law_grid_size(scenario.control.as_ref()) > 1 {
+    if law_grid_size(scenario.control.as_ref()) > 1 {
         bail!(
             "the scenario puts control-law parameters on a grid: their cell follows a \
              sample's place in a sweep, which the boundary search does not keep"
@@ -435,8 +438,8 @@ pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::allowable_slope;
     use crate::scenario::Scenario;
+    use crate::stats::allowable_slope;
     use rand_core::SeedableRng;
     use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -446,9 +449,9 @@ mod tests {
         for boundary in [5.0, 20.0, 44.0] {
             let samples: Vec<(f64, bool)> = (0..5000)
                 .map(|_| {
-                    let s = 45.0 * sampling::uniform01(&mut rng);
+                    let s = 45.0 * crate::rng::uniform01(&mut rng);
                     let p = if s < boundary { 0.999 } else { 0.8 };
-                    (s, sampling::uniform01(&mut rng) < p)
+                    (s, crate::rng::uniform01(&mut rng) < p)
                 })
                 .collect();
             let round = Round {
@@ -514,9 +517,9 @@ mod tests {
             let upper = next_upper(allowable, (0.0, 45.0), 0.5);
             let samples = (0..2000)
                 .map(|_| {
-                    let u = sampling::uniform_open01(&mut rng);
-                    let s = sampling::quantile(&conditioned(dist, upper), u, 0);
-                    (s, sampling::uniform01(&mut rng) < p_stable(s))
+                    let u = uniform_open01(&mut rng);
+                    let s = quantile(&conditioned(dist, upper), u, 0);
+                    (s, crate::rng::uniform01(&mut rng) < p_stable(s))
                 })
                 .collect();
             rounds.push(Round {

@@ -1,10 +1,12 @@
 //! The command line: raw flags (clap) apart from the work they start.
 
-use crate::output::sweep::{Format, SweepInfo, SweepWriter};
+use crate::output::format::Format;
+use crate::output::sweep::{SweepInfo, SweepWriter};
 use crate::output::trace::{self, TraceInfo};
 use crate::reference::Outcome;
 use crate::reference::{self, Model, Summary};
-use crate::sampling::{self, Sample};
+use crate::sampling;
+use crate::scenario::Sample;
 use crate::scenario::{DEFAULT_TOML, INPUT_FIELDS, Scenario};
 use crate::sweep::Shard;
 use clap::{Parser, Subcommand};
@@ -484,6 +486,15 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     }
 }
 
+/// A scenario to run, from its TOML text: read and checked (`Scenario::from_toml`), and
+/// its control loop checked against its thrusters and the laws this program registers
+/// (`control::check`).
+pub(crate) fn scenario_from_toml(text: &str) -> Result<Scenario, crate::scenario::ScenarioError> {
+    let s = Scenario::from_toml(text)?;
+    crate::control::check(&s)?;
+    Ok(s)
+}
+
 /// A scenario from its file (or the default) with the command line's seed applied, and the
 /// text to store as its provenance.
 pub(crate) fn load_scenario(
@@ -495,7 +506,7 @@ pub(crate) fn load_scenario(
         Some(p) => {
             let text = std::fs::read_to_string(p)
                 .map_err(|e| anyhow::anyhow!("cannot read scenario file {}: {e}", p.display()))?;
-            (Scenario::from_toml(&text)?, text)
+            (scenario_from_toml(&text)?, text)
         }
     };
     if let Some(s) = seed {
@@ -526,7 +537,7 @@ fn scenario_of_sweep(
             .map_err(|_| anyhow::anyhow!("{}: {key} is not a whole number", path.display()))
     };
     let (seed, samples) = (number("touchdown.seed")?, number("touchdown.samples")?);
-    let mut scenario = Scenario::from_toml(&text)
+    let mut scenario = scenario_from_toml(&text)
         .map_err(|e| anyhow::anyhow!("the scenario stored in {}: {e}", path.display()))?;
     scenario.seed = seed;
     crate::table::reattach(&mut scenario, meta, inputs, path)?;
@@ -625,7 +636,7 @@ pub(crate) struct SweepPlan {
     pub text: String,
     pub samples: u64,
     pub shard: Option<Shard>,
-    pub format: crate::output::sweep::Format,
+    pub format: crate::output::format::Format,
     pub out: PathBuf,
     /// The kernel it runs with (the precision is the scenario's).
     pub kernel: KernelKind,
@@ -653,7 +664,7 @@ impl SweepPlan {
                     _ => crate::scenario::Design::Independent,
                 };
                 let text = crate::scenario::with_design(&text, design);
-                let mut again = Scenario::from_toml(&text)
+                let mut again = scenario_from_toml(&text)
                     .map_err(|e| anyhow::anyhow!("--design {word}: {e}"))?;
                 again.seed = scenario.seed;
                 (again, text)
@@ -700,7 +711,7 @@ impl SweepPlan {
         kernel: KernelChoice,
     ) -> anyhow::Result<SweepPlan> {
         let from = crate::output::resume::Interrupted::read(out)?;
-        let mut scenario = Scenario::from_toml(&from.scenario_toml)
+        let mut scenario = scenario_from_toml(&from.scenario_toml)
             .map_err(|e| anyhow::anyhow!("the scenario of {}: {e}", from.path.display()))?;
         scenario.seed = from.seed;
         crate::table::reattach(&mut scenario, &from.meta, inputs, &from.path)?;

@@ -6,7 +6,7 @@
 
 use crate::output::read::open_sweep;
 use crate::reference::Outcome;
-use crate::report::Z95;
+use crate::stats::Z95;
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, StringArray, UInt64Array};
 use std::fmt::Write as _;

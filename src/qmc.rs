@@ -91,9 +91,7 @@ fn laine_karras(mut x: u32, seed: u32) -> u32 {
 #[must_use]
 pub fn sobol_point(index: u64, dim: usize, seed: u64) -> f64 {
     let epoch = index >> 32;
-    let key = crate::sampling::splitmix64(
-        seed ^ crate::sampling::splitmix64(epoch ^ ((dim as u64) << 40)),
-    );
+    let key = crate::rng::splitmix64(seed ^ crate::rng::splitmix64(epoch ^ ((dim as u64) << 40)));
     let x = sobol_bits(index as u32, dim);
     let scrambled = laine_karras(x.reverse_bits(), key as u32).reverse_bits();
     (f64::from(scrambled) + 0.5) * (1.0 / 4_294_967_296.0)

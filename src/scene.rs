@@ -8,8 +8,9 @@
 //! proportions of the leg geometry, while every footpad is drawn where the trace has it.
 
 use crate::plot::Table;
-use crate::reference::{Model, Surface};
+use crate::reference::Model;
 use crate::scenario::Scenario;
+use crate::slope::Surface;
 use anyhow::{anyhow, bail};
 use glam::{DQuat, DVec3};
 use std::path::Path;
@@ -294,7 +295,7 @@ impl Scene {
             } else {
                 "parameter"
             };
-            let key = format!("touchdown.{kind}.{}", crate::sampling::value_name(k));
+            let key = format!("touchdown.{kind}.{}", crate::scenario::value_name(k));
             if k < 2 || table.meta.contains_key(&key) {
                 *v = number(&key)?;
             }

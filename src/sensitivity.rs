@@ -321,7 +321,7 @@ pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analy
     if bootstrap == 0 || bootstrap > 100_000 {
         bail!("--bootstrap {bootstrap}: from 1 to 100000 replicates");
     }
-    let varied = crate::sampling::design_inputs(&scenario);
+    let varied = crate::scenario::design_inputs(&scenario);
     let d = varied.len();
     let legs = crate::output::read::leg_count(&schema);
     // Per base point, the four outputs of its d + 2 rows (NaN until seen).
@@ -343,7 +343,7 @@ pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analy
             .collect::<anyhow::Result<Vec<_>>>()?;
         for i in 0..b.num_rows() {
             rows += 1;
-            let (base, matrix) = crate::sampling::design_position(sample.value(i), d);
+            let (base, matrix) = crate::scenario::design_position(sample.value(i), d);
             let o = outcome.value(i);
             let stroke = strokes.iter().map(|c| c.value(i)).fold(0.0, f64::max);
             let block = blocks
@@ -390,7 +390,7 @@ pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analy
     Ok(Analysis {
         names: varied
             .iter()
-            .map(|&k| crate::sampling::value_name(k))
+            .map(|&k| crate::scenario::value_name(k))
             .collect(),
         outputs,
         base_points: n,
@@ -452,7 +452,7 @@ pub fn markdown(path: &std::path::Path, analysis: &Analysis) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::uniform01;
+    use crate::rng::uniform01;
     use std::f64::consts::PI;
 
     /// Outputs of `f` on a Saltelli design with `n` pseudo-random base points in [0, 1]^d.

@@ -11,13 +11,13 @@
 //! N shard files of each value (`touchdown merge`'s way) before it writes the table.
 
 use crate::cli::{KernelChoice, RunOptions, SweepPlan};
-use crate::output::sweep::Format;
+use crate::output::format::Format;
 use crate::reference::Outcome;
-use crate::report::{
+use crate::scenario::Scenario;
+use crate::stats::{
     Allowable, SECTOR_DEG, SECTORS, allowable_slope, relative_azimuth_deg, sector_of,
     wilson_interval,
 };
-use crate::scenario::Scenario;
 use crate::sweep::Shard;
 use anyhow::{Context as _, anyhow, bail};
 use std::fmt::Write as _;
@@ -200,7 +200,7 @@ fn with_value(base: &toml::Table, key: &str, value: f64) -> anyhow::Result<(Stri
             "# touchdown study: {key} = {value}\n{}",
             toml::to_string(&table).context("cannot write the scenario of a study value")?
         );
-        match Scenario::from_toml(&text) {
+        match crate::cli::scenario_from_toml(&text) {
             Ok(s) => return Ok((text, s)),
             Err(e) => {
                 first_error.get_or_insert(e);
@@ -316,7 +316,7 @@ fn step_of(point: &Point, samples: u64, shard: Option<Shard>) -> anyhow::Result<
             Some(what) => Err(other(&file, what)),
         };
     }
-    let interrupted = crate::output::resume::interrupted_path(&file);
+    let interrupted = crate::output::interrupted_path(&file);
     if interrupted.exists() {
         let meta = metadata_of(&interrupted)?;
         return match differs(&meta, point, samples, shard) {

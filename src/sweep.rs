@@ -7,18 +7,19 @@
 //! of rows whatever the sample count; blocks keep their lanes from one window to the next,
 //! so the last (longest) samples of a window do not leave the block half empty.
 
-use crate::control::{ControlModel, LAW_MEMORY, LaneControl, LawCommand, Sensed, Truth};
-use crate::reference::model::Surface;
+use crate::control::{ControlModel, LAW_MEMORY, LaneControl, LawCommand, Sensed, Thrust, Truth};
 use crate::reference::outcome::{LegSummary, Outcome, Summary};
-use crate::reference::step::Thrust;
 use crate::reference::{Model, initial_state};
-use crate::sampling::{self, Sample};
+use crate::sampling;
+use crate::scenario::Sample;
 use crate::scenario::Scenario;
+use crate::slope::Surface;
 use glam::{DQuat, DVec3};
 use kernels::block::{Block, LaneInit, LaneThrust};
 use kernels::isa::{Isa, Kernel, KernelKind, WithKernel};
+use kernels::lane::lane;
 use kernels::lane::{Lane, MAX_LANES};
-use kernels::params::{HoneycombParams, LegParams, Params, lane};
+use kernels::params::{HoneycombParams, LegParams, Params};
 use kernels::terrain::Terrain;
 use kernels::vec3::Vec3;
 use rayon::prelude::*;

@@ -16,160 +16,17 @@
 //! and column. The file's SHA-256 goes into the sweep's metadata, and `--resume`, `merge`
 //! and `trace` hold a sweep to the table it ran.
 
-use crate::sampling::{Sample, VALUES, value_name};
-use crate::scenario::{Design, Geometry, INPUT_FIELDS, Parameter, Scenario, check_value};
+use crate::scenario::{
+    Design, Geometry, INPUT_FIELDS, InputTable, METADATA_KEYS, Parameter, Scenario, VALUES,
+    check_value, value_name,
+};
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, ArrayRef, RecordBatch, cast::AsArray, types::*};
 use arrow_schema::{DataType, Field, FieldRef, Schema};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// A table of inputs, read and checked.
-pub struct InputTable {
-    /// The file, as the command line named it.
-    pub path: PathBuf,
-    /// `csv`, `arrow` or `parquet`.
-    pub format: &'static str,
-    /// SHA-256 of the file's bytes, in hexadecimal (as `sha256sum` prints it).
-    pub sha256: String,
-    pub rows: u64,
-    /// The columns it was read with, in the table's order.
-    pub columns: Vec<String>,
-    /// Whether the columns unknown to the sweep pass through (`--keep-columns`).
-    pub keep_columns: bool,
-    /// The table's column for each value of a sample (`Sample::values`), if it has one.
-    values: [Option<Vec<f64>>; VALUES],
-    sample_seed: Option<Vec<u64>>,
-    terrain_tile: Option<Vec<u32>>,
-    terrain_offset_m: [Option<Vec<f64>>; 2],
-    /// The columns passed through to the output, in the table's order.
-    kept: Option<RecordBatch>,
-}
-
-impl std::fmt::Debug for InputTable {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("InputTable")
-            .field("path", &self.path)
-            .field("sha256", &self.sha256)
-            .field("rows", &self.rows)
-            .field("columns", &self.columns)
-            .finish_non_exhaustive()
-    }
-}
-
-/// Two tables are the same table when their files have the same bytes and are read the same
-/// way.
-impl PartialEq for InputTable {
-    fn eq(&self, other: &Self) -> bool {
-        self.sha256 == other.sha256 && self.keep_columns == other.keep_columns
-    }
-}
-
-/// Schema metadata keys of a sweep that ran a table (`InputTable::metadata`).
-pub const METADATA_KEYS: [&str; 5] = [
-    "touchdown.inputs.file",
-    "touchdown.inputs.sha256",
-    "touchdown.inputs.rows",
-    "touchdown.inputs.columns",
-    "touchdown.inputs.keep_columns",
-];
-
 impl InputTable {
-    /// Value `k` of a sample (`Sample::values`) of row `row`, where the table gives it.
-    #[must_use]
-    pub fn value(&self, k: usize, row: u64) -> Option<f64> {
-        self.values[k].as_ref().map(|c| c[row as usize])
-    }
-
-    /// The generator seed of row `row`, where the table gives it.
-    #[must_use]
-    pub fn sample_seed(&self, row: u64) -> Option<u64> {
-        self.sample_seed.as_ref().map(|c| c[row as usize])
-    }
-
-    /// The terrain tile and offset of row `row`, where the table gives them.
-    #[must_use]
-    pub fn terrain(&self, row: u64) -> (Option<u32>, [Option<f64>; 2]) {
-        let i = row as usize;
-        (
-            self.terrain_tile.as_ref().map(|c| c[i]),
-            [0, 1].map(|j| self.terrain_offset_m[j].as_ref().map(|c| c[i])),
-        )
-    }
-
-    /// The fields of the columns passed through to the output, in the table's order.
-    #[must_use]
-    pub fn kept_fields(&self) -> Vec<FieldRef> {
-        self.kept
-            .as_ref()
-            .map_or_else(Vec::new, |b| b.schema().fields().iter().cloned().collect())
-    }
-
-    /// The columns passed through to the output, rows `first..first + rows`, as fresh
-    /// arrays (not slices: the file's bytes do not depend on where a batch was cut from).
-    pub fn kept_rows(&self, first: u64, rows: usize) -> anyhow::Result<Vec<ArrayRef>> {
-        let Some(b) = &self.kept else {
-            return Ok(Vec::new());
-        };
-        b.columns()
-            .iter()
-            .map(|c| {
-                let piece = c.slice(first as usize, rows);
-                Ok(arrow_select::concat::concat(&[piece.as_ref()])?)
-            })
-            .collect()
-    }
-
-    /// What a sweep's metadata says of the table (`METADATA_KEYS`).
-    #[must_use]
-    pub fn metadata(&self) -> Vec<(String, String)> {
-        let values = [
-            self.path.display().to_string(),
-            self.sha256.clone(),
-            self.rows.to_string(),
-            self.columns.join(","),
-            self.keep_columns.to_string(),
-        ];
-        METADATA_KEYS
-            .iter()
-            .zip(values)
-            .map(|(k, v)| ((*k).to_string(), v))
-            .collect()
-    }
-
-    /// A table in memory that replays `samples` exactly, row `i` sample `i`: every value
-    /// (`Sample::values`), the generator seed and the terrain tile and offset. `boundary`
-    /// runs its candidates through the kernels this way, each with its slope redrawn.
-    #[must_use]
-    pub fn from_samples(samples: &[Sample]) -> InputTable {
-        let values: Vec<[f64; VALUES]> = samples.iter().map(Sample::values).collect();
-        InputTable {
-            path: PathBuf::from("(boundary search)"),
-            format: "memory",
-            sha256: String::new(),
-            rows: samples.len() as u64,
-            columns: (0..VALUES)
-                .map(|k| value_name(k).to_string())
-                .chain(
-                    [
-                        "sample_seed",
-                        "terrain_tile",
-                        "terrain_offset_u_m",
-                        "terrain_offset_v_m",
-                    ]
-                    .map(String::from),
-                )
-                .collect(),
-            keep_columns: false,
-            values: std::array::from_fn(|k| Some(values.iter().map(|v| v[k]).collect())),
-            sample_seed: Some(samples.iter().map(|s| s.seed).collect()),
-            terrain_tile: Some(samples.iter().map(|s| s.terrain_tile).collect()),
-            terrain_offset_m: [0, 1]
-                .map(|j| Some(samples.iter().map(|s| s.terrain_offset_m[j]).collect())),
-            kept: None,
-        }
-    }
-
     /// Reads the table at `path` for a sweep of `scenario`, checking every value.
     pub fn read(path: &Path, keep_columns: bool, scenario: &Scenario) -> anyhow::Result<Self> {
         let bytes = std::fs::read(path)

@@ -4,7 +4,8 @@
 //! The tiles depend on the scenario seed alone and are built once per run; every sample
 //! picks a tile and an offset (see `sampling`), so memory does not grow with the samples.
 
-use crate::sampling::{normal_quantile, splitmix64, uniform_open01};
+use crate::dist::normal_quantile;
+use crate::rng::{splitmix64, uniform_open01};
 use crate::scenario::Roughness;
 use kernels::terrain::Terrain;
 use rand_core::SeedableRng;

@@ -9,10 +9,10 @@
 //! effective sample size where the share is 0 or 1). Refused where the terrain puts more
 //! than `UNCOVERED_MAX` of its slopes where the sweep drew none.
 
+use crate::dist::normal_cdf;
 use crate::reference::Outcome;
-use crate::report::Z95;
-use crate::sampling::normal_cdf;
 use crate::scenario::{Design, Dist, Scenario};
+use crate::stats::wilson;
 use anyhow::{anyhow, bail};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -345,18 +345,6 @@ pub struct Weighted {
     pub uncovered: f64,
     /// The sweep's range of slopes, deg.
     pub range: (f64, f64),
-}
-
-/// The 95 % Wilson score interval of a share `p` from `n` (not necessarily whole) trials.
-#[must_use]
-pub fn wilson(p: f64, n: f64) -> (f64, f64) {
-    if n <= 0.0 || !n.is_finite() {
-        return (0.0, 1.0);
-    }
-    let z = Z95;
-    let centre = (p + z * z / (2.0 * n)) / (1.0 + z * z / n);
-    let half = z / (1.0 + z * z / n) * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt();
-    ((centre - half).max(0.0), (centre + half).min(1.0))
 }
 
 /// Weighs samples `(slope, outcome)` of a sweep of `scenario` onto `terrain`.

@@ -16,7 +16,8 @@
 use kernels::isa::{Isa, KernelKind, Precision};
 use std::sync::atomic::AtomicUsize;
 use touchdown::reference::{self, Model, Outcome, Summary};
-use touchdown::sampling::{self, Sample};
+use touchdown::sampling;
+use touchdown::scenario::Sample;
 use touchdown::scenario::Scenario;
 use touchdown::sweep;
 

@@ -1,6 +1,6 @@
 //! Landers and samples made by hand for the closed-form tests (`validation`, `thrust`).
 
-use touchdown::sampling::Sample;
+use touchdown::scenario::Sample;
 use touchdown::scenario::{AttitudeReference, Geometry, Inputs, Scenario};
 
 /// Inputs with every value zero: level ground, no fall, no errors, no rates.

@@ -129,7 +129,7 @@ fn report_counts_and_allowable_slopes_of_gentle_landings() {
                 .filter(|(_, a)| (from..from + 45.0).contains(*a))
                 .map(|(s, a)| (*s, *s < static_limit_deg(*a) + band))
                 .collect();
-            touchdown::report::allowable_slope(&mut predicted)
+            touchdown::stats::allowable_slope(&mut predicted)
                 .slope_deg()
                 .unwrap()
         };

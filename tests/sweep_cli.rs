@@ -176,7 +176,7 @@ pub(crate) fn read_sweep(path: &Path) -> SweepFile {
         schema = builder.schema().clone();
         // Batches as large as the writer's, so that both formats cut the rows alike.
         let reader = builder
-            .with_batch_size(touchdown::output::sweep::BATCH_ROWS)
+            .with_batch_size(touchdown::output::format::BATCH_ROWS)
             .build()
             .expect("a Parquet reader");
         batches = reader

@@ -11,11 +11,14 @@ use crate::lander::{CG_HEIGHT_M, FALL_WITHIN_S, Facing, quiet, regular, sample_o
 use glam::{DMat3, DQuat, DVec3};
 use kernels::block::Block;
 use kernels::isa::{Isa, Kernel, KernelKind, Precision, WithKernel};
+use touchdown::control::Thrust;
 use touchdown::control::{ControlModel, LaneControl, Truth, attitude_torque};
-use touchdown::reference::step::{Thrust, step, step_size};
-use touchdown::reference::{Model, State, StepReport, Surface, initial_state, run};
-use touchdown::sampling::{self, Sample};
+use touchdown::reference::step::{step, step_size};
+use touchdown::reference::{Model, State, StepReport, initial_state, run};
+use touchdown::sampling;
+use touchdown::scenario::Sample;
 use touchdown::scenario::{Dist, G0_M_S2, Inputs, Scenario, Sensors, Target};
+use touchdown::slope::Surface;
 use touchdown::sweep::{kernel_params, lane_init, lane_thrust};
 
 // ---------------------------------------------------------------------------------------

@@ -11,10 +11,9 @@ use crate::lander::{CG_HEIGHT_M, FALL_WITHIN_S, Facing, quiet, regular, sample_o
 use glam::{DMat3, DVec3};
 use std::f64::consts::PI;
 use touchdown::reference::step::{step, step_size};
-use touchdown::reference::{
-    Model, Outcome, State, StepReport, Summary, Surface, initial_state, run,
-};
+use touchdown::reference::{Model, Outcome, State, StepReport, Summary, initial_state, run};
 use touchdown::scenario::{AttitudeReference, Geometry, Inputs, PSI_PA, Scenario, Stage};
+use touchdown::slope::Surface;
 
 // ---------------------------------------------------------------------------------------
 // Helpers: inputs, scenarios, a step driver and the results table.

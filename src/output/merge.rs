@@ -3,8 +3,9 @@
 //! order, cut into the same batches. Shards that do not belong together are refused before
 //! anything is written.
 
+use super::format::Format;
 use super::read::{format_of, open};
-use super::sweep::{Format, Rebatcher, SHARD_KEYS, SweepInfo, SweepWriter, schema};
+use super::sweep::{Rebatcher, SHARD_KEYS, SweepInfo, SweepWriter, schema};
 use crate::sweep::Shard;
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, UInt64Array};
@@ -76,7 +77,7 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         .collect();
     let meta = files[0].schema.metadata();
     let text = |key: &str| meta.get(key).map_or("", String::as_str);
-    let table: Vec<(String, String)> = crate::table::METADATA_KEYS
+    let table: Vec<(String, String)> = crate::scenario::METADATA_KEYS
         .iter()
         .filter_map(|k| meta.get(k).map(|v| ((*k).to_string(), v.clone())))
         .collect();

@@ -1,6 +1,7 @@
 //! Arrow files: fields that carry their units, provenance in the schema metadata, and
 //! files that appear under their name only when complete.
 
+pub mod format;
 pub mod merge;
 pub mod read;
 pub mod resume;
@@ -14,6 +15,14 @@ use std::path::{Path, PathBuf};
 
 /// The engine and version that write a file, as stored in its schema metadata.
 pub const ENGINE: &str = concat!("touchdown ", env!("CARGO_PKG_VERSION"));
+
+/// Where an interrupted sweep to `out` keeps its rows.
+#[must_use]
+pub fn interrupted_path(out: &Path) -> PathBuf {
+    let mut name = out.file_name().unwrap_or_default().to_os_string();
+    name.push(".interrupted");
+    out.with_file_name(name)
+}
 
 /// A field with its unit (`"1"` for dimensionless) and a description in its metadata.
 #[must_use]

@@ -1,7 +1,7 @@
 //! Reading sweep files back (for `merge` and `--resume`): Arrow IPC or Parquet, told
 //! apart by their first bytes, with the schema metadata they were written with.
 
-use super::sweep::{BATCH_ROWS, Format};
+use super::format::{BATCH_ROWS, Format};
 use anyhow::{anyhow, bail};
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;

@@ -3,21 +3,15 @@
 //! `sweep --resume OUT` reads its settings and rows back from there to finish the sweep.
 
 use super::ENGINE;
+use super::format::{BATCH_ROWS, Format};
+use super::interrupted_path;
 use super::read::{format_of, open};
-use super::sweep::{BATCH_ROWS, Format, Rebatcher, SHARD_KEYS, SweepWriter};
+use super::sweep::{Rebatcher, SHARD_KEYS, SweepWriter};
 use crate::sweep::Shard;
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, StringArray, UInt64Array};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-
-/// Where an interrupted sweep to `out` keeps its rows.
-#[must_use]
-pub fn interrupted_path(out: &Path) -> PathBuf {
-    let mut name = out.file_name().unwrap_or_default().to_os_string();
-    name.push(".interrupted");
-    out.with_file_name(name)
-}
 
 /// An interrupted sweep, as its file describes it.
 pub struct Interrupted {

@@ -2,6 +2,7 @@
 //! order, as Arrow IPC or Parquet, written in batches of a fixed row count so that the
 //! bytes depend on the scenario and seed alone (not on threads or timing).
 
+use super::format::{BATCH_ROWS, Format};
 use super::{AtomicFile, ENGINE, IpcWriter, Out, field};
 use crate::scenario::INPUT_FIELDS;
 use crate::sweep::{Row, Shard};
@@ -13,29 +14,6 @@ use parquet::arrow::ArrowWriter;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Arc;
-
-/// Rows per record batch (and Parquet row group).
-pub const BATCH_ROWS: usize = 65_536;
-
-/// File formats of a sweep.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Format {
-    /// Arrow IPC file (Feather v2): `pandas.read_feather`, `polars.read_ipc`.
-    Arrow,
-    /// Parquet: `pandas.read_parquet`, `polars.read_parquet`.
-    Parquet,
-}
-
-impl Format {
-    /// The name `--format` takes.
-    #[must_use]
-    pub fn key(self) -> &'static str {
-        match self {
-            Format::Arrow => "arrow",
-            Format::Parquet => "parquet",
-        }
-    }
-}
 
 /// Provenance stored in the schema metadata.
 pub struct SweepInfo<'a> {
@@ -50,7 +28,7 @@ pub struct SweepInfo<'a> {
     pub control: &'a [&'static str],
     /// The columns of the parameters drawn per sample (`PARAMETER_FIELDS`).
     pub parameters: &'a [&'static str],
-    /// What the file says of the table of inputs the sweep ran (`table::METADATA_KEYS`);
+    /// What the file says of the table of inputs the sweep ran (`scenario::METADATA_KEYS`);
     /// empty without one.
     pub table: &'a [(String, String)],
     /// The table's columns passed through (`--keep-columns`), last.
@@ -477,7 +455,7 @@ pub struct SweepWriter {
     pending: Vec<Row>,
     rows: u64,
     /// The table of inputs whose columns pass through (`--keep-columns`).
-    table: Option<Arc<crate::table::InputTable>>,
+    table: Option<Arc<crate::scenario::InputTable>>,
 }
 
 impl SweepWriter {
@@ -515,7 +493,7 @@ impl SweepWriter {
 
     /// Passes the kept columns of `table` (`SweepInfo::kept`) through, row by row.
     #[must_use]
-    pub fn with_table(mut self, table: Option<Arc<crate::table::InputTable>>) -> SweepWriter {
+    pub fn with_table(mut self, table: Option<Arc<crate::scenario::InputTable>>) -> SweepWriter {
         self.table = table;
         self
     }
@@ -581,7 +559,7 @@ impl SweepWriter {
     /// and that path; `None` where the output is not a regular file (a device, a FIFO,
     /// standard output): the rows went there, and nothing is made beside it.
     pub fn finish_interrupted(self) -> anyhow::Result<(u64, Option<std::path::PathBuf>)> {
-        let path = super::resume::interrupted_path(self.path());
+        let path = super::interrupted_path(self.path());
         let (rows, made) = self.close(Some(&path))?;
         Ok((rows, made.then_some(path)))
     }

@@ -7,8 +7,9 @@
 
 use super::{AtomicFile, ENGINE, IpcWriter, field};
 use crate::control::ControlModel;
-use crate::reference::{Model, StepReport, Summary, Surface};
-use crate::sampling::Sample;
+use crate::reference::{Model, StepReport, Summary};
+use crate::scenario::Sample;
+use crate::slope::Surface;
 use arrow_array::{ArrayRef, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Schema};
 use glam::{DMat3, DQuat, DVec3, EulerRot};
@@ -377,7 +378,7 @@ pub struct TraceInfo<'a> {
     pub sample: &'a Sample,
     pub summary: &'a Summary,
     /// The table of inputs the sample's row came from, if any.
-    pub table: Option<&'a crate::table::InputTable>,
+    pub table: Option<&'a crate::scenario::InputTable>,
 }
 
 /// Runs `sample` with the reference model and writes every `every`-th step to `path`, the

@@ -2,7 +2,7 @@
 //! varied value, with its 95 % intervals, and the static tipping limit beside it.
 
 use super::{Area, FONT, SERIES_COLOURS, drawing, legend, save_png, span};
-use crate::report::{Allowable, SECTOR_DEG, SECTORS};
+use crate::stats::{Allowable, SECTOR_DEG, SECTORS};
 use crate::study::{About, Row};
 use plotters::prelude::*;
 use std::path::Path;

@@ -3,12 +3,12 @@
 
 use super::{Area, FONT, OUTCOME_COLOURS, Table, drawing, legend, save_png, span};
 use crate::reference::Outcome;
-use crate::report::{
+use crate::scenario::Scenario;
+use crate::stability::static_limit_deg;
+use crate::stats::{
     SECTOR_DEG, SECTORS, allowable_slope, quantile, relative_azimuth_deg, sector_of,
     wilson_interval,
 };
-use crate::scenario::Scenario;
-use crate::stability::static_limit_deg;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 

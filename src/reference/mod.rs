@@ -12,7 +12,7 @@ pub mod rigid_body;
 pub mod run;
 pub mod step;
 
-pub use model::{Model, Surface};
+pub use model::Model;
 pub use outcome::{Outcome, Summary};
 pub use run::{initial_state, run};
 pub use step::{State, StepReport};

@@ -30,8 +30,9 @@
 //!   between), and the tilt too far from 90 deg to pass it at the fastest turn the angular
 //!   momentum allows, `|L| / I_min`, with the margin `TURN_MARGIN`.
 
-use super::model::{Model, Surface};
+use super::model::Model;
 use super::step::{State, StepReport};
+use crate::slope::Surface;
 use glam::{DMat3, DVec3};
 use kernels::outcome::{
     REST_GAP_M, REST_SLIP_M, SLIDE_EDGE_MARGIN, SLIDE_FORCE_BAND, SLIDE_LEG_SHARE, TURN_MARGIN,

@@ -2,13 +2,14 @@
 //! then steps until the outcome is decided.
 
 use super::contact::LegState;
-use super::model::{Model, Surface};
+use super::model::Model;
 use super::outcome::{Summary, Tracker};
 use super::rigid_body::Body;
 use super::step::{State, StepReport, step, step_size};
-use crate::control::{LaneControl, truth_of};
-use crate::sampling::Sample;
+use crate::control::{LaneControl, Truth};
+use crate::scenario::Sample;
 use crate::scenario::Start;
+use crate::slope::Surface;
 use glam::{DQuat, DVec3};
 
 /// The state at the last moment of the free fall: attitude and velocity against the
@@ -67,7 +68,7 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
             rate_rad_s: rate,
         },
         legs: vec![LegState::default(); model.legs.len()],
-        thrust: super::step::Thrust::NONE,
+        thrust: crate::control::Thrust::NONE,
     }
 }
 
@@ -137,6 +138,21 @@ pub fn run_to_end(
             let contact = report.legs.iter().any(super::step::LegReport::in_contact);
             state.thrust = c.event(m, &truth_of(&state, &surface, contact));
         }
+    }
+}
+
+/// The truth a lander's control loop reads from the reference's state (`contact`: a
+/// footpad touched in the last step).
+#[must_use]
+pub fn truth_of(state: &State, surface: &Surface, contact: bool) -> Truth {
+    Truth {
+        t_s: state.t_s,
+        position_m: state.body.position_m,
+        velocity_m_s: state.body.velocity_m_s,
+        attitude: state.body.attitude,
+        rate_rad_s: state.body.rate_rad_s,
+        contact,
+        normal: surface.normal,
     }
 }
 

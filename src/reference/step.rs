@@ -2,8 +2,10 @@
 //! The SIMD kernel (`kernels::step`) does the same, in the same order.
 
 use super::contact::{self, LegState};
-use super::model::{Model, Surface};
+use super::model::Model;
 use super::rigid_body::{self, Body};
+use crate::control::Thrust;
+use crate::slope::Surface;
 use glam::{DMat3, DVec3};
 
 /// The state of one lander.
@@ -17,37 +19,6 @@ pub struct State {
     pub legs: Vec<LegState>,
     /// The thrust until the next control event (none without a control loop).
     pub thrust: Thrust,
-}
-
-/// The thrust on the lander from one event of its control loop to the next (MODEL.md
-/// section 7; the kernels' `ThrustLanes`, one lane).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Thrust {
-    /// Sum of the firing thrusters' forces, in B, N.
-    pub force_b_n: DVec3,
-    /// Their moment about the CG, in B, N m.
-    pub moment_b_n_m: DVec3,
-    /// Time to the next control event, s (infinite where none comes).
-    pub event_in_s: f64,
-    /// What the thrust can add, within a longest flight step, to the speed at which a
-    /// footpad approaches the surface (`step_size`), m/s.
-    pub approach_m_s: f64,
-    /// The control loop may still fire: no rest and no early rule counts.
-    pub powered: bool,
-    /// Sum of the firing thrusters' thrust magnitudes (what burns propellant), N.
-    pub flow_n: f64,
-}
-
-impl Thrust {
-    /// No thrust and no event to come: a passive lander.
-    pub const NONE: Thrust = Thrust {
-        force_b_n: DVec3::ZERO,
-        moment_b_n_m: DVec3::ZERO,
-        event_in_s: f64::INFINITY,
-        approach_m_s: 0.0,
-        powered: false,
-        flow_n: 0.0,
-    };
 }
 
 /// One leg during one step, as computed at the start of the step.

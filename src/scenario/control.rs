@@ -1,6 +1,6 @@
 //! The `[control]` table: the control loop, its sensors and its laws (MODEL.md section 7).
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::inputs::{Dist, read_dist_at_least};
 use super::reader::Reader;
 

@@ -1,9 +1,12 @@
 //! The `[damper]` table: the crushable honeycomb dampers and their strut axes.
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::inputs::{Parameter, Sampled, read_parameter};
 use super::reader::Reader;
 use toml::Value;
+
+/// One pound per square inch in pascal.
+pub const PSI_PA: f64 = 6_894.757_293_168_361;
 
 /// One stage of a crushable cartridge.
 #[derive(Debug, Clone, Copy, PartialEq)]

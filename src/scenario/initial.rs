@@ -1,6 +1,6 @@
 //! The `[initial]` table: the initial state besides the sampled inputs.
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::reader::Reader;
 
 /// Against what the attitude errors and the fall velocity are taken (MODEL.md section 8).

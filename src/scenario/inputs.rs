@@ -1,63 +1,9 @@
 //! The `[inputs]` table: the distribution of every sampled input.
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::reader::Reader;
+pub use crate::dist::Dist;
 use toml::Value;
-
-/// How an input is drawn for each sample.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Dist {
-    /// Always this value.
-    Fixed(f64),
-    /// Uniform on `[min, max]`.
-    Uniform { min: f64, max: f64 },
-    /// Normal, truncated to `[min, max]` (infinite bounds: not truncated).
-    Normal {
-        mean: f64,
-        sd: f64,
-        min: f64,
-        max: f64,
-    },
-    /// `count` evenly spaced values from `min` to `max`; several grid inputs form their
-    /// cartesian product, the last one varying fastest with the sample index.
-    Grid { min: f64, max: f64, count: u64 },
-}
-
-impl Dist {
-    /// The distribution as a scenario writes it, `{ dist = "uniform", min = 1, max = 2 }`.
-    #[must_use]
-    pub fn toml(&self) -> String {
-        match *self {
-            Dist::Fixed(x) => format!("{x:?}"),
-            Dist::Uniform { min, max } => {
-                format!("{{ dist = \"uniform\", min = {min:?}, max = {max:?} }}")
-            }
-            Dist::Normal { mean, sd, min, max } => {
-                let mut s = format!("{{ dist = \"normal\", mean = {mean:?}, sd = {sd:?}");
-                if min.is_finite() {
-                    s += &format!(", min = {min:?}");
-                }
-                if max.is_finite() {
-                    s += &format!(", max = {max:?}");
-                }
-                s + " }"
-            }
-            Dist::Grid { min, max, count } => {
-                format!("{{ dist = \"grid\", min = {min:?}, max = {max:?}, count = {count} }}")
-            }
-        }
-    }
-
-    /// The smallest and largest value the distribution can produce.
-    #[must_use]
-    pub fn support(&self) -> (f64, f64) {
-        match *self {
-            Dist::Fixed(x) => (x, x),
-            Dist::Uniform { min, max } | Dist::Grid { min, max, .. } => (min, max),
-            Dist::Normal { min, max, .. } => (min, max),
-        }
-    }
-}
 
 /// The inputs that every sample draws, in the order they are drawn and written.
 /// `T` is `Dist` in a scenario and `f64` in a sample.
@@ -182,6 +128,23 @@ pub const PARAMETER_FIELDS: [(&str, &str); PARAMETERS] = [
     ("rms_height_m", "m"),
 ];
 
+/// Number of values a sample draws: the inputs (`INPUT_FIELDS`), then the parameters
+/// (`PARAMETER_FIELDS`).
+pub const VALUES: usize = INPUT_FIELDS.len() + PARAMETERS;
+
+// The quasi-random design gives every value a dimension of the Sobol sequence.
+const _: () = assert!(VALUES <= crate::qmc::MAX_DIMENSIONS);
+
+/// The column name of value `k` of a sample (`Sample::values`).
+#[must_use]
+pub fn value_name(k: usize) -> &'static str {
+    if k < INPUT_FIELDS.len() {
+        INPUT_FIELDS[k].0
+    } else {
+        PARAMETER_FIELDS[k - INPUT_FIELDS.len()].0
+    }
+}
+
 impl Parameter {
     /// Every parameter, in column order.
     pub const ALL: [Parameter; PARAMETERS] = [
@@ -246,8 +209,8 @@ pub(super) fn read_parameter(
         Some(v @ Value::Table(_)) => {
             let dist = read_dist(r, key, &v, &Range::at_least(min, values))?;
             let median = match dist {
-                Dist::Grid { count, .. } => crate::sampling::quantile(&dist, 0.5, count / 2),
-                _ => crate::sampling::quantile(&dist, 0.5, 0),
+                Dist::Grid { count, .. } => crate::dist::quantile(&dist, 0.5, count / 2),
+                _ => crate::dist::quantile(&dist, 0.5, 0),
             };
             if !matches!(dist, Dist::Fixed(_)) {
                 sampled[which as usize] = Some(dist);
@@ -326,7 +289,7 @@ const INPUT_RANGES: [Range; 12] = [
 /// Whether each parameter (`Parameter::ALL`) must be greater than 0 (else at least 0).
 const PARAMETER_POSITIVE: [bool; PARAMETERS] = [true, true, true, false, false, true, false];
 
-/// Whether `x` is a value that value `k` of a sample (`sampling::Sample::values`: the
+/// Whether `x` is a value that value `k` of a sample (`Sample::values`: the
 /// inputs, then the parameters) may take; if not, what the values may be.
 pub fn check_value(k: usize, x: f64) -> Result<(), &'static str> {
     let range = if k < INPUT_RANGES.len() {

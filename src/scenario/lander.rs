@@ -1,6 +1,6 @@
 //! The `[lander]` table: the lander's mass, inertia and leg geometry.
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::inputs::{Parameter, Sampled, read_parameter};
 use super::reader::Reader;
 use toml::Value;

@@ -1,6 +1,6 @@
 //! The `[outcome]` table: the thresholds of the outcome classification.
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::reader::Reader;
 
 /// Thresholds of the outcome classification (MODEL.md section 8).

@@ -6,7 +6,7 @@
 //! error names the key, the value found and what is allowed. `finish` reports the keys that
 //! nobody asked for, with the closest known key as a hint.
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use toml::{Table, Value};
 
 /// One table of the scenario file, with the dotted path that leads to it.

@@ -1,6 +1,6 @@
 //! The `[simulation]` table: time stepping and the lanes' precision.
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::reader::Reader;
 use kernels::isa::Precision;
 

@@ -1,6 +1,6 @@
 //! The `[surface]` table and its `[surface.roughness]`: the contact law and the terrain.
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::inputs::{Parameter, Sampled, read_parameter};
 use super::reader::Reader;
 

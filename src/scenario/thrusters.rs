@@ -1,7 +1,7 @@
 //! The `[[thrusters]]` array and the `[propulsion]` table: where the thrusters sit, how
 //! hard they push, and what their propellant gives (MODEL.md section 7).
 
-use super::ScenarioError;
+use super::error::ScenarioError;
 use super::reader::Reader;
 use toml::Value;
 

@@ -1,0 +1,152 @@
+//! The control laws: the built-in descent and attitude-hold laws, and the laws of a
+//! program's own (`Law`), registered under a name for scenarios to name.
+
+use super::allocation::Wrench;
+use super::sensors::Sensed;
+use glam::{DQuat, DVec3};
+
+/// Numbers a law keeps per lander from one control instant to the next (`Law::command`).
+pub const LAW_MEMORY: usize = 8;
+
+/// What a law commands for one lander over the next control period.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LawCommand {
+    /// The force and torque (B) to give, as means over the period: the control loop shares
+    /// them among the thrusters (`Allocation`) and quantises the on-times.
+    pub wrench: Wrench,
+    /// The law will command nothing more for this lander: once its last firing is over the
+    /// lander is left to itself (its rest clock and the early rules count again).
+    pub done: bool,
+}
+
+/// A control law of the user's own, named by a scenario (`[control] law = "NAME"`) and
+/// registered under that name (`register_law`) by a program that embeds touchdown.
+///
+/// At every control instant the loop reads the sensors (with their noise, bias and
+/// latency as the scenario gives them) and asks the law for a command. The landers of a
+/// block that reach a control instant together are handed over at once, as slices of the
+/// same length: `sensed[i]` is what lander `i`'s sensors read, `memory[i]` what the law
+/// kept for that lander (zero at the start of its sample), and the law writes its command
+/// into `command[i]` (zero when it is called). The law commands in every phase until it
+/// says `done`; contact shows in `Sensed::contact` (the touchdown switches). Called from
+/// the sweep's worker threads: it must not depend on the order or grouping of landers, or
+/// a sweep would not give the same file for every thread count.
+pub trait Law: Send + Sync {
+    /// Commands for the landers of `sensed`.
+    fn command(
+        &self,
+        sensed: &[Sensed],
+        memory: &mut [[f64; LAW_MEMORY]],
+        command: &mut [LawCommand],
+    );
+}
+
+/// A registered law and its name.
+#[derive(Clone)]
+pub struct NamedLaw {
+    pub name: String,
+    pub law: std::sync::Arc<dyn Law>,
+}
+
+impl std::fmt::Debug for NamedLaw {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "law {:?}", self.name)
+    }
+}
+
+static LAWS: std::sync::Mutex<Vec<(String, std::sync::Arc<dyn Law>)>> =
+    std::sync::Mutex::new(Vec::new());
+
+/// Registers `law` under `name` for scenarios to name (`[control] law = "NAME"`): a
+/// program that embeds touchdown calls this before `cli::main` (see
+/// `examples/user_law.rs`). A later registration under the same name replaces it.
+pub fn register_law(name: &str, law: impl Law + 'static) {
+    let mut laws = LAWS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    laws.retain(|(n, _)| n != name);
+    laws.push((name.to_string(), std::sync::Arc::new(law)));
+}
+
+/// The names of the laws registered, in the order they were registered.
+#[must_use]
+pub fn registered_names() -> Vec<String> {
+    let laws = LAWS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    laws.iter().map(|(n, _)| n.clone()).collect()
+}
+
+/// The law registered under `name`.
+#[must_use]
+pub fn registered(name: &str) -> Option<NamedLaw> {
+    let laws = LAWS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    laws.iter().find(|(n, _)| n == name).map(|(n, l)| NamedLaw {
+        name: n.clone(),
+        law: l.clone(),
+    })
+}
+
+/// A sample's descent (`[control.descent]`): its parameters as drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DescentDraw {
+    pub start_altitude_m: f64,
+    pub start_speed_m_s: f64,
+    pub braking_m_s2: f64,
+    pub gain_per_s: f64,
+    pub release_speed_m_s: f64,
+}
+
+/// The descent law's force on the lander (`[control.descent]`), in B: its mass times
+/// `gain (h'_ref - h') n + g up`, where `h' = n . v` is the rate of the footpads' height
+/// `height_m` along the surface normal `n` (`v` the sensed velocity) and `h'_ref` the
+/// braking profile's, `-sqrt(2 braking (height - release))` above the release height
+/// `release_height_m` and 0 at or below it; the sensed attitude turns it into B. Only the
+/// approach along the normal is controlled: a velocity along the surface (the navigation
+/// error) changes no height and is left as it is.
+#[must_use]
+pub fn descent_force(
+    d: &DescentDraw,
+    mass_kg: f64,
+    gravity_m_s2: f64,
+    height_m: f64,
+    release_height_m: f64,
+    sensed: &Sensed,
+    normal: DVec3,
+) -> DVec3 {
+    let above = (height_m - release_height_m).max(0.0);
+    let rate_ref = -(2.0 * d.braking_m_s2 * above).sqrt();
+    let rate = normal.dot(sensed.velocity_m_s);
+    let accel = normal * ((rate_ref - rate) * d.gain_per_s) + DVec3::Z * gravity_m_s2;
+    sensed.attitude.inverse() * (accel * mass_kg)
+}
+
+/// The attitude-hold law (`[control.attitude_hold]`): torque in B, `kp` times the rotation
+/// vector (axis times angle) that turns `Z_B` onto `target` (in I; zero while the angle is
+/// below `deadband_rad`), minus `kd` times the body rates. About `Z_B` only the rate term
+/// acts (no yaw target).
+#[must_use]
+pub fn attitude_torque(
+    kp: f64,
+    kd: f64,
+    deadband_rad: f64,
+    attitude: DQuat,
+    rate_rad_s: DVec3,
+    target: DVec3,
+) -> DVec3 {
+    let t_b = attitude.inverse() * target;
+    let axis = DVec3::new(-t_b.y, t_b.x, 0.0);
+    let sin = axis.length();
+    let angle = libm::atan2(sin, t_b.z);
+    let error = if angle < deadband_rad {
+        DVec3::ZERO
+    } else if sin > 1e-12 {
+        axis * (angle / sin)
+    } else {
+        // Upside down: any horizontal axis turns it back.
+        DVec3::X * angle
+    };
+    error * kp - rate_rad_s * kd
+}

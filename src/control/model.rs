@@ -1,0 +1,97 @@
+//! What stays fixed over a sweep: a scenario's control loop, its thrusters as designed and
+//! their allocation, and a sample's drawn descent.
+
+use super::allocation::Allocation;
+use super::laws::{DescentDraw, NamedLaw, registered};
+use crate::dist::quantile;
+use crate::rng::{stream, uniform_open01};
+use crate::scenario::{Control, Dist, G0_M_S2, Sample, Scenario, Thruster, law_grid};
+
+/// What stays fixed over a sweep: the control loop of the scenario, the thrusters as
+/// designed, and what the step-size bound needs.
+#[derive(Debug, Clone)]
+pub struct ControlModel {
+    pub config: Control,
+    /// The user's law the scenario names (`[control] law`), if any.
+    pub law: Option<NamedLaw>,
+    pub thrusters: Vec<Thruster>,
+    pub allocation: Allocation,
+    pub period_s: f64,
+    /// `isp g0`, m/s: propellant used is the thrust's integral over it.
+    pub exhaust_speed_m_s: f64,
+    pub thrust_error_sd: f64,
+    pub misalignment_sd_rad: f64,
+    pub mass_kg: f64,
+    pub gravity_m_s2: f64,
+    /// Depth of the lowest footpad below the CG along `-Z_B`, m: the descent law takes the
+    /// footpads' height as the altimeter's CG altitude less this.
+    pub footpad_depth_m: f64,
+    pub inertia_min_kg_m2: f64,
+    pub leg_reach_m: f64,
+    pub flight_step_max_s: f64,
+    pub rest_speed_m_s: f64,
+    pub rest_rate_rad_s: f64,
+    pub hold_time_s: f64,
+}
+
+impl ControlModel {
+    /// The control loop of a validated scenario, if it has one.
+    #[must_use]
+    pub fn of(s: &Scenario, leg_reach_m: f64, footpad_depth_m: f64) -> Option<ControlModel> {
+        let config = s.control.clone()?;
+        Some(ControlModel {
+            law: config.law.as_deref().and_then(registered),
+            period_s: 1.0 / config.rate_hz,
+            config,
+            thrusters: s.thrusters.clone(),
+            allocation: Allocation::new(&s.thrusters),
+            exhaust_speed_m_s: s.propulsion.isp_s * G0_M_S2,
+            thrust_error_sd: s.propulsion.thrust_error_sd,
+            misalignment_sd_rad: s.propulsion.misalignment_sd_deg.to_radians(),
+            mass_kg: s.lander.mass_kg,
+            gravity_m_s2: s.gravity_m_s2,
+            footpad_depth_m,
+            inertia_min_kg_m2: s
+                .lander
+                .inertia_kg_m2
+                .iter()
+                .copied()
+                .fold(f64::INFINITY, f64::min),
+            leg_reach_m,
+            flight_step_max_s: s.simulation.flight_step_max_s,
+            rest_speed_m_s: s.outcome.rest_speed_m_s,
+            rest_rate_rad_s: s.outcome.rest_rate_deg_s.to_radians(),
+            hold_time_s: s.outcome.hold_time_s,
+        })
+    }
+}
+
+impl ControlModel {
+    /// The descent of `sample`, if the loop has one: each parameter drawn from a stream of
+    /// its own (at the sample's grid point for a grid). The initial state (a descent's
+    /// start) and the loop both take it from here.
+    #[must_use]
+    pub fn descent_draw(&self, sample: &Sample) -> Option<DescentDraw> {
+        let d = self.config.descent.as_ref()?;
+        let g = law_grid(&self.config, sample.law_cell);
+        let seed = sample.seed;
+        Some(DescentDraw {
+            start_altitude_m: draw(&d.start_altitude_m, seed, "descent_start_altitude_m", g[4]),
+            start_speed_m_s: draw(&d.start_speed_m_s, seed, "descent_start_speed_m_s", g[5]),
+            braking_m_s2: draw(&d.braking_m_s2, seed, "descent_braking_m_s2", g[6]),
+            gain_per_s: draw(&d.gain_per_s, seed, "descent_gain_per_s", g[7]),
+            release_speed_m_s: draw(
+                &d.release_speed_m_s,
+                seed,
+                "descent_release_speed_m_s",
+                g[8],
+            ),
+        })
+    }
+}
+
+/// A draw of `dist` for the sample with generator seed `seed` (its own stream, `name`), at
+/// `grid_index` where `dist` is a grid.
+pub(super) fn draw(dist: &Dist, seed: u64, name: &str, grid_index: u64) -> f64 {
+    quantile(dist, uniform_open01(&mut stream(seed, name)), grid_index)
+}

@@ -1,0 +1,36 @@
+//! What the control loop reads: a lander's true state at a control event, and what its
+//! sensors report of it.
+
+use glam::{DQuat, DVec3};
+
+/// The true state of a lander at a control event, which the sensors read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Truth {
+    pub t_s: f64,
+    pub position_m: DVec3,
+    pub velocity_m_s: DVec3,
+    pub attitude: DQuat,
+    pub rate_rad_s: DVec3,
+    /// Whether a footpad touched the surface in the last step (the touchdown switches).
+    pub contact: bool,
+    /// The surface normal.
+    pub normal: DVec3,
+}
+
+/// What the sensors report at a control instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sensed {
+    /// Time of the control instant, s: `k` periods at the `k`-th instant (the flight
+    /// computer's clock).
+    pub t_s: f64,
+    /// Attitude, B to I.
+    pub attitude: DQuat,
+    /// Body rates in B, rad/s.
+    pub rate_rad_s: DVec3,
+    /// CG velocity in I, m/s.
+    pub velocity_m_s: DVec3,
+    /// CG height above the surface plane along its normal, m.
+    pub altitude_m: f64,
+    /// A touchdown switch closed.
+    pub contact: bool,
+}
