@@ -17,18 +17,28 @@ pub(crate) const SHORT: &str = "[simulation]\nt_max_s = 20.0\n";
 /// The short scenario with a three-leg lander.
 pub(crate) const THREE_LEGS: &str = "[lander]\nlegs = 3\n\n[simulation]\nt_max_s = 20.0\n";
 
+/// The `[inputs]` lines of a lander set down: its release height and its roll and pitch
+/// (TOML values: a number or a distribution) as given, no velocity or rate errors. Every
+/// test of set-down landers takes its lines from here.
+macro_rules! set_down_lines {
+    ($release_height:expr, $attitude:expr) => {
+        concat!(
+            "release_height_m = ",
+            $release_height,
+            "\nvelocity_error_x_m_s = 0.0\nvelocity_error_y_m_s = 0.0\nvelocity_error_z_m_s = 0.0\n",
+            "roll_deg = ",
+            $attitude,
+            "\npitch_deg = ",
+            $attitude,
+            "\nrate_x_deg_s = 0.0\nrate_y_deg_s = 0.0\nrate_z_deg_s = 0.0\n"
+        )
+    };
+}
+pub(crate) use set_down_lines;
+
 /// `[inputs]` lines of a lander set down rather than dropped: no fall, no velocity,
 /// attitude or rate errors.
-pub(crate) const SET_DOWN: &str = "release_height_m = 0.0
-velocity_error_x_m_s = 0.0
-velocity_error_y_m_s = 0.0
-velocity_error_z_m_s = 0.0
-roll_deg = 0.0
-pitch_deg = 0.0
-rate_x_deg_s = 0.0
-rate_y_deg_s = 0.0
-rate_z_deg_s = 0.0
-";
+pub(crate) const SET_DOWN: &str = set_down_lines!("0.0", "0.0");
 
 /// A fresh, empty folder for one test.
 pub(crate) struct TempDir(PathBuf);

@@ -70,3 +70,22 @@ impl Facing {
 /// Time a lander has to fall over once past the limit: its tilt grows like exp(t/tau),
 /// tau = sqrt(I_edge / (m g L)) ~ 8 s for these gears, from ~0.01 rad to past 90 deg.
 pub(crate) const FALL_WITHIN_S: f64 = 400.0;
+
+/// The slope at which `falls_at(slope)` turns from false to true, bracketed by bisection to
+/// 1/64 deg between `stays` and `falls` (which must bracket it), deg.
+pub(crate) fn tipping_slope_between(
+    stays: f64,
+    falls: f64,
+    mut falls_at: impl FnMut(f64) -> bool,
+) -> f64 {
+    let (mut stays, mut falls) = (stays, falls);
+    while falls - stays > 1.0 / 64.0 {
+        let mid = 0.5 * (stays + falls);
+        if falls_at(mid) {
+            falls = mid;
+        } else {
+            stays = mid;
+        }
+    }
+    0.5 * (stays + falls)
+}

@@ -2,6 +2,7 @@
 //! footpads stick, `tipped` before 90 deg only where running on cannot change it. Both in
 //! the scalar reference and in the SIMD kernels.
 
+use crate::common::SET_DOWN;
 use kernels::outcome::SLIDE_EDGE_MARGIN;
 use touchdown::reference::{self, Model, Outcome, Summary};
 use touchdown::scenario::Scenario;
@@ -43,21 +44,17 @@ clearance_m = 0.0
 [inputs]
 slope_deg = {{ dist = "grid", min = {}, max = {}, count = 2 }}
 downhill_azimuth_deg = 0.0
-release_height_m = 0.0
-velocity_error_x_m_s = {speed_m_s}
-velocity_error_y_m_s = 0.0
-velocity_error_z_m_s = 0.0
-roll_deg = 0.0
-pitch_deg = 0.0
-rate_x_deg_s = 0.0
-rate_y_deg_s = 0.0
-rate_z_deg_s = 0.0
-[simulation]
+{set_down}[simulation]
 t_max_s = 30.0
 [outcome]
 early_sliding = false
 "#,
-        slopes[0], slopes[1]
+        slopes[0],
+        slopes[1],
+        set_down = SET_DOWN.replace(
+            "velocity_error_x_m_s = 0.0",
+            &format!("velocity_error_x_m_s = {speed_m_s}")
+        ),
     ))
     .unwrap()
 }

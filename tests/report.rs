@@ -2,27 +2,21 @@
 //! slope it finds for landers set down gently is the one the static tipping limit of
 //! MODEL.md section 8 gives for the same samples.
 
-use crate::common::{Run, TempDir, touchdown};
+use crate::common::{Run, TempDir, set_down_lines, touchdown};
 
 /// The default gear set down on the surface (attitude against the surface normal, no
 /// errors, released from rest 1 micrometre above it), friction high enough that nothing slides: whether it
 /// stands is decided by the static limit alone.
-const GENTLE: &str = r#"
+const GENTLE: &str = concat!(
+    r#"
 [surface]
 friction_coefficient = 1.5
 [inputs]
 slope_deg = { dist = "uniform", min = 20.0, max = 70.0 }
 downhill_azimuth_deg = { dist = "uniform", min = 0.0, max = 360.0 }
-release_height_m = 0.0
-velocity_error_x_m_s = 0.0
-velocity_error_y_m_s = 0.0
-velocity_error_z_m_s = 0.0
-roll_deg = 0.0
-pitch_deg = 0.0
-rate_x_deg_s = 0.0
-rate_y_deg_s = 0.0
-rate_z_deg_s = 0.0
-[initial]
+"#,
+    set_down_lines!("0.0", "0.0"),
+    r#"[initial]
 attitude_reference = "surface"
 # 1 micrometre above the surface: the gear meets it at 0.2 mm/s, set down, not dropped
 # (a drop of 1 mm already tips landers 1-2 deg below the static limit by the friction
@@ -30,7 +24,8 @@ attitude_reference = "surface"
 clearance_m = 1.0e-6
 [simulation]
 t_max_s = 60.0
-"#;
+"#
+);
 
 /// `atan(r / h)` of the default gear (4 legs at 0.6 m, the first at 45 deg, CG 0.428936 m
 /// above the footpads) for a downhill azimuth relative to the lander, deg.

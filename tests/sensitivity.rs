@@ -2,7 +2,7 @@
 //! it: the rows of each block are A, B and A with one input from B; the indices rank the
 //! inputs as the statics of the gear says they must; bad use is refused.
 
-use crate::common::{SET_DOWN, TempDir, arrow_column, touchdown};
+use crate::common::{SET_DOWN, TempDir, arrow_column, set_down_lines, touchdown};
 
 /// Landers set down (no fall, no errors) at any yaw on slopes of 0-70 deg, past the default
 /// gear's static limit (44.7 deg with a side downhill, 54.4 with a leg downhill, MODEL.md
@@ -10,13 +10,13 @@ use crate::common::{SET_DOWN, TempDir, arrow_column, touchdown};
 /// doing above all, the yaw's (which side faces downhill) where the slope is between the two
 /// limits, and a drop of at most 2 mm changes little. The three are drawn; the rest fixed.
 fn design() -> String {
-    let set_down = SET_DOWN.replace("release_height_m = 0.0\n", "");
+    let set_down = set_down_lines!("{ dist = \"uniform\", min = 0.0, max = 0.002 }", "0.0");
     format!(
         "design = \"sobol-indices\"\n[surface]\nfriction_coefficient = 1.5\n[inputs]\n\
          slope_deg = {{ dist = \"uniform\", min = 0.0, max = 70.0 }}\n\
          downhill_azimuth_deg = 0.0\n\
          yaw_deg = {{ dist = \"uniform\", min = 0.0, max = 360.0 }}\n\
-         release_height_m = {{ dist = \"uniform\", min = 0.0, max = 0.002 }}\n{set_down}\
+         {set_down}\
          [initial]\nattitude_reference = \"surface\"\nclearance_m = 1.0e-6\n\
          [simulation]\nt_max_s = 40.0\n"
     )

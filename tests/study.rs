@@ -1,7 +1,9 @@
 //! `touchdown study`: its table equals what `touchdown report` says of separate sweeps at
 //! the same values; it shards, merges and resumes like a sweep; bad studies are refused.
 
-use crate::common::{BadInput, TempDir, bad_args, check_bad_input, read_bytes, touchdown};
+use crate::common::{
+    BadInput, TempDir, bad_args, check_bad_input, read_bytes, set_down_lines, touchdown,
+};
 use arrow_array::{Array, Float64Array, RecordBatch, UInt64Array};
 use std::path::Path;
 
@@ -9,26 +11,24 @@ use std::path::Path;
 /// 2 deg) on a gripping surface: the footpad radius moves the allowable slope of every
 /// sector (none at 0.4 m, about 37 deg at 0.6 m, about 51 deg at 0.8 m), so the table has
 /// both kinds of cells. About 1,500 samples/s.
-const SET_DOWN: &str = "seed = 1
+const SET_DOWN: &str = concat!(
+    "seed = 1
 [surface]
 friction_coefficient = 1.5
 [inputs]
 slope_deg = { dist = \"uniform\", min = 0.0, max = 60.0 }
-release_height_m = { dist = \"uniform\", min = 0.0, max = 0.01 }
 yaw_deg = { dist = \"uniform\", min = 0.0, max = 360.0 }
-velocity_error_x_m_s = 0.0
-velocity_error_y_m_s = 0.0
-velocity_error_z_m_s = 0.0
-roll_deg = { dist = \"normal\", mean = 0.0, sd = 2.0 }
-pitch_deg = { dist = \"normal\", mean = 0.0, sd = 2.0 }
-rate_x_deg_s = 0.0
-rate_y_deg_s = 0.0
-rate_z_deg_s = 0.0
-[initial]
+",
+    set_down_lines!(
+        "{ dist = \"uniform\", min = 0.0, max = 0.01 }",
+        "{ dist = \"normal\", mean = 0.0, sd = 2.0 }"
+    ),
+    "[initial]
 attitude_reference = \"surface\"
 [simulation]
 t_max_s = 20.0
-";
+"
+);
 
 const VALUES: [&str; 3] = ["0.4", "0.6", "0.8"];
 const FILES: [&str; 3] = [

@@ -7,7 +7,9 @@
 //! --release --test tests thrust -- --nocapture` shows every number, passing or not.
 
 use crate::common::Table;
-use crate::lander::{CG_HEIGHT_M, FALL_WITHIN_S, Facing, quiet, regular, sample_of, standing};
+use crate::lander::{
+    CG_HEIGHT_M, FALL_WITHIN_S, Facing, quiet, regular, sample_of, standing, tipping_slope_between,
+};
 use glam::{DMat3, DQuat, DVec3};
 use kernels::block::Block;
 use kernels::isa::{Isa, Kernel, KernelKind, Precision, WithKernel};
@@ -662,19 +664,11 @@ fn gently(legs: usize, footpad_radius_m: f64, first_leg_deg: f64) -> Scenario {
 /// Bisects, to 1/64 deg, the slope between `stays` and `falls` at which the gear of
 /// `scenario` with `thrust` falls over within FALL_WITHIN_S.
 fn tipping_slope(scenario: &Scenario, downhill: f64, thrust: f64, stays: f64, falls: f64) -> f64 {
-    let (mut stays, mut falls) = (stays, falls);
-    while falls - stays > 1.0 / 64.0 {
-        let mid = 0.5 * (stays + falls);
-        if stand(scenario, mid, downhill, thrust, FALL_WITHIN_S)
+    tipping_slope_between(stays, falls, |slope| {
+        stand(scenario, slope, downhill, thrust, FALL_WITHIN_S)
             .2
             .is_some()
-        {
-            falls = mid;
-        } else {
-            stays = mid;
-        }
-    }
-    0.5 * (stays + falls)
+    })
 }
 
 #[test]

@@ -7,7 +7,9 @@
 //! --nocapture` shows every number, passing or not.
 
 use crate::common::Table;
-use crate::lander::{CG_HEIGHT_M, FALL_WITHIN_S, Facing, quiet, regular, sample_of, standing};
+use crate::lander::{
+    CG_HEIGHT_M, FALL_WITHIN_S, Facing, quiet, regular, sample_of, standing, tipping_slope_between,
+};
 use glam::{DMat3, DVec3};
 use std::f64::consts::PI;
 use touchdown::reference::step::{step, step_size};
@@ -554,16 +556,9 @@ fn default_gear_falls(damping: f64, slope_deg: f64, downhill_deg: f64) -> bool {
 /// The slope at which the default gear starts to fall over, bracketed by bisection to
 /// 1/64 deg between 0.5 deg below and above `limit` (which must bracket it), deg.
 fn measured_tipping_slope(damping: f64, limit: f64, downhill_deg: f64) -> f64 {
-    let (mut stays, mut falls) = (limit - 0.5, limit + 0.5);
-    while falls - stays > 1.0 / 64.0 {
-        let mid = 0.5 * (stays + falls);
-        if default_gear_falls(damping, mid, downhill_deg) {
-            falls = mid;
-        } else {
-            stays = mid;
-        }
-    }
-    0.5 * (stays + falls)
+    tipping_slope_between(limit - 0.5, limit + 0.5, |slope| {
+        default_gear_falls(damping, slope, downhill_deg)
+    })
 }
 
 #[test]

@@ -3,31 +3,26 @@
 //! from that distribution directly, within their intervals; sweeps that cannot be weighed
 //! are refused with the reason.
 
-use crate::common::{TempDir, touchdown};
+use crate::common::{TempDir, set_down_lines, touchdown};
 
 /// Landers set down gently (drops of at most 1 cm, no attitude or rate errors) at any yaw,
 /// on a gripping surface, so that the slope decides: stable below about 45 deg, tipped or
 /// sliding above. The slope line is the test's.
-const BASE: &str = "seed = 1
+const BASE: &str = concat!(
+    "seed = 1
 [surface]
 friction_coefficient = 1.5
 [inputs]
 SLOPE
-release_height_m = { dist = \"uniform\", min = 0.0, max = 0.01 }
 yaw_deg = { dist = \"uniform\", min = 0.0, max = 360.0 }
-velocity_error_x_m_s = 0.0
-velocity_error_y_m_s = 0.0
-velocity_error_z_m_s = 0.0
-roll_deg = 0.0
-pitch_deg = 0.0
-rate_x_deg_s = 0.0
-rate_y_deg_s = 0.0
-rate_z_deg_s = 0.0
-[initial]
+",
+    set_down_lines!("{ dist = \"uniform\", min = 0.0, max = 0.01 }", "0.0"),
+    "[initial]
 attitude_reference = \"surface\"
 [simulation]
 t_max_s = 20.0
-";
+"
+);
 
 /// Runs a sweep of `slope` (a `slope_deg` value) with `samples` and `seed` into `out`;
 /// gives its stable, tipped and sliding counts.
