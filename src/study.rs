@@ -603,7 +603,7 @@ impl Row {
     /// The line of `point` from its sweep file.
     fn read(point: &Point, samples: u64) -> anyhow::Result<Row> {
         let path = &point.file;
-        let t = crate::plot::Table::read(path, |n| {
+        let t = crate::output::columns::Table::read(path, |n| {
             matches!(n, "slope_deg" | "downhill_azimuth_deg" | "yaw_deg")
         })?;
         if t.rows as u64 != samples {
