@@ -59,20 +59,7 @@ pub fn search(
     threads: Option<usize>,
     progress: bool,
 ) -> anyhow::Result<Search> {
-    let dist = scenario.inputs.slope_deg;
-    if !matches!(dist, Dist::Uniform { .. } | Dist::Normal { .. }) {
-        bail!(
-            "the scenario's slope_deg is {}: the boundary search draws slopes below a bound, \
-             so it needs slope_deg drawn from a distribution (uniform or normal)",
-            dist.toml()
-        );
-    }
-    if sampling::law_grid_size(scenario.control.as_ref()) > 1 {
-        bail!(
-            "the scenario puts control-law parameters on a grid: their cell follows a \
-             sample's place in a sweep, which the boundary search does not keep"
-        );
-    }
+    let dist = slope_distribution(&scenario)?;
     let range = dist.support();
     // Candidates are independent draws; a row of a round takes a candidate's values.
     let design = scenario.design;
@@ -168,6 +155,26 @@ pub fn search(
         dist,
         design,
     })
+}
+
+/// The slope distribution of `scenario`, refused where the search cannot draw below a bound
+/// or cannot keep the scenario's grid of control-law parameters.
+fn slope_distribution(scenario: &Scenario) -> anyhow::Result<Dist> {
+    let dist = scenario.inputs.slope_deg;
+    if !matches!(dist, Dist::Uniform { .. } | Dist::Normal { .. }) {
+        bail!(
+            "the scenario's slope_deg is {}: the boundary search draws slopes below a bound, \
+             so it needs slope_deg drawn from a distribution (uniform or normal)",
+            dist.toml()
+        );
+    }
+    if sampling::law_grid_size(scenario.control.as_ref()) > 1 {
+        bail!(
+            "the scenario puts control-law parameters on a grid: their cell follows a \
+             sample's place in a sweep, which the boundary search does not keep"
+        );
+    }
+    Ok(dist)
 }
 
 /// The rows of one round: candidates drawn in order from `next`, each kept for its sector
