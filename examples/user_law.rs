@@ -28,5 +28,5 @@ impl Law for DampThenHold {
 
 fn main() -> std::process::ExitCode {
     register_law("damp_then_hold", DampThenHold);
-    touchdown::cli::main()
+    touchdown::commands::main()
 }

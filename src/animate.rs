@@ -9,7 +9,7 @@
 //! a still camera costs little.
 
 use crate::output::AtomicFile;
-use crate::plot::{FONT, OUTCOME_COLOURS, drawing, register_font};
+use crate::plot::canvas::{FONT, OUTCOME_COLOURS, drawing, register_font};
 use crate::reference::Outcome;
 use crate::scene::{Ground, Pose, Scene};
 use anyhow::{anyhow, bail};

@@ -10,56 +10,12 @@
 //! conditioned on `[slope_min, s]` for every `s <= u` at which its slope lies at or below
 //! `s`, so the rounds pool at each candidate slope (`pooled_allowable`) and the report's
 //! rules (`stats::allowable_of_counts`) give the estimate and interval after each round.
+//!
+//! The rounds themselves run in `run::boundary`; the command is `commands::boundary`.
 
-use crate::dist::quantile;
-use crate::reference::Model;
-use crate::reference::outcome::Outcome;
-use crate::rng::{stream, uniform_open01};
-use crate::sampling;
-use crate::scenario::InputTable;
-use crate::scenario::{Design, Dist};
-use crate::scenario::{Sample, law_grid_size};
-use crate::stats::{
-    Allowable, MIN_SAMPLES, SECTOR_DEG, SECTORS, allowable_of_counts, relative_azimuth_deg,
-    sector_of,
-};
-use anyhow::bail;
-use std::fmt::Write as _;
-use std::path::PathBuf;
-use std::sync::Arc;
-use std::sync::atomic::AtomicUsize;
-
-/// Flags of `touchdown boundary`.
-#[derive(clap::Args, Debug)]
-pub struct BoundaryArgs {
-    /// Scenario file (TOML); without it, the default sweep of MODEL.md section 11. Its
-    /// slope must be drawn from a distribution (uniform or normal).
-    #[arg(long, value_name = "FILE")]
-    pub scenario: Option<PathBuf>,
-    /// Seed (overrides the scenario's `seed`).
-    #[arg(long, value_name = "S", value_parser = crate::cli::parse_seed, allow_negative_numbers = true)]
-    pub seed: Option<u64>,
-    /// A sector is finished once its 95 % interval is at most this wide, deg.
-    #[arg(
-        long,
-        value_name = "DEG",
-        default_value = "0.5",
-        allow_negative_numbers = true
-    )]
-    pub tolerance: f64,
-    /// Samples per unfinished sector per round.
-    #[arg(long, value_name = "N", default_value = "2000", value_parser = crate::cli::parse_count, allow_negative_numbers = true)]
-    pub batch: u64,
-    /// A sector is finished once it has run this many samples.
-    #[arg(long, value_name = "N", default_value = "200000", value_parser = crate::cli::parse_count, allow_negative_numbers = true)]
-    pub max_samples_per_sector: u64,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_name = "T", value_parser = crate::cli::parse_threads, allow_negative_numbers = true)]
-    pub threads: Option<usize>,
-    /// No progress on stderr (there is none either when stderr is not a terminal).
-    #[arg(long)]
-    pub quiet: bool,
-}
+use crate::scenario::Dist;
+use crate::scenario::Sample;
+use crate::stats::{Allowable, MIN_SAMPLES, allowable_of_counts};
 
 /// The samples of one sector from one round: slopes drawn from the scenario's slope
 /// distribution conditioned on `[slope_min, upper_deg]`, and whether each was stable.
@@ -231,208 +187,9 @@ fn conditioned(dist: Dist, upper: f64) -> Dist {
 /// else stays. At the top of the range it is the sample's own slope.
 #[must_use]
 pub fn with_slope_below(mut sample: Sample, dist: Dist, upper: f64) -> Sample {
-    let u = uniform_open01(&mut stream(sample.seed, "slope_deg"));
-    sample.inputs.slope_deg = quantile(&conditioned(dist, upper), u, 0);
+    let u = crate::rng::uniform_open01(&mut crate::rng::stream(sample.seed, "slope_deg"));
+    sample.inputs.slope_deg = crate::dist::quantile(&conditioned(dist, upper), u, 0);
     sample
-}
-
-/// Candidates drawn per sample a round wants, at most, before a sector the scenario's
-/// azimuth and yaw do not reach is given up.
-const DRAWS_PER_WANTED: u64 = 64;
-
-/// One sector's search.
-struct Sector {
-    rounds: Vec<Round>,
-    used: u64,
-    allowable: Allowable,
-    stop: Option<Stop>,
-}
-
-/// Runs `touchdown boundary`.
-pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
-    use std::io::IsTerminal;
-    let started = std::time::Instant::now();
-    if !(args.tolerance > 0.0 && args.tolerance.is_finite()) {
-        bail!(
-            "--tolerance {}: must be a width in deg above 0",
-            args.tolerance
-        );
-    }
-    if args.batch == 0 {
-        bail!("--batch 0: each round needs at least 1 sample per sector");
-    }
-    if args.max_samples_per_sector == 0 {
-        bail!("--max-samples-per-sector 0: a sector needs at least 1 sample");
-    }
-    let (mut scenario, _) = crate::cli::load_scenario(args.scenario.as_ref(), args.seed)?;
-    let dist = scenario.inputs.slope_deg;
-    if !matches!(dist, Dist::Uniform { .. } | Dist::Normal { .. }) {
-        bail!(
-            "the scenario's slope_deg is {}: the boundary search draws slopes below a bound, \
-             so it needs slope_deg drawn from a distribution (uniform or normal)",
-            dist.toml()
-        );
-    }
-    if law_grid_size(scenario.control.as_ref()) > 1 {
-        bail!(
-            "the scenario puts control-law parameters on a grid: their cell follows a \
-             sample's place in a sweep, which the boundary search does not keep"
-        );
-    }
-    let range = dist.support();
-    // Candidates are independent draws; a row of a round takes a candidate's values.
-    let design = scenario.design;
-    scenario.design = Design::Independent;
-    let pool = crate::cli::worker_pool(args.threads)?;
-    let model = Model::new(&scenario);
-    let isa = kernels::isa::Isa::detect();
-    let never = AtomicUsize::new(0);
-    let progress = !args.quiet && std::io::stderr().is_terminal();
-    let mut sectors: Vec<Sector> = (0..SECTORS)
-        .map(|_| Sector {
-            rounds: Vec::new(),
-            used: 0,
-            allowable: Allowable::TooFewSamples(0),
-            stop: None,
-        })
-        .collect();
-    let mut next_candidate = 0u64;
-    let mut total = 0u64;
-    while sectors.iter().any(|s| s.stop.is_none()) {
-        let wanted: Vec<u64> = sectors
-            .iter()
-            .map(|s| match s.stop {
-                None => args.batch.min(args.max_samples_per_sector - s.used),
-                Some(_) => 0,
-            })
-            .collect();
-        let upper: Vec<f64> = sectors
-            .iter()
-            .map(|s| next_upper(s.allowable, range, args.tolerance))
-            .collect();
-        let want: u64 = wanted.iter().sum();
-        let mut got = [0u64; SECTORS];
-        let mut rows: Vec<Sample> = Vec::with_capacity(want as usize);
-        let mut row_sector: Vec<usize> = Vec::with_capacity(want as usize);
-        let budget = next_candidate + DRAWS_PER_WANTED * want;
-        while (rows.len() as u64) < want && next_candidate < budget {
-            let s = sampling::sample(&scenario, next_candidate);
-            next_candidate += 1;
-            let k = sector_of(relative_azimuth_deg(
-                s.inputs.downhill_azimuth_deg,
-                s.inputs.yaw_deg,
-            ));
-            if got[k] < wanted[k] {
-                got[k] += 1;
-                rows.push(with_slope_below(s, dist, upper[k]));
-                row_sector.push(k);
-            }
-        }
-        for (k, sector) in sectors.iter_mut().enumerate() {
-            if wanted[k] > 0 {
-                sector.rounds.push(Round {
-                    upper_deg: upper[k],
-                    samples: Vec::with_capacity(got[k] as usize),
-                });
-                if got[k] == 0 {
-                    sector.stop = Some(Stop::Unreached);
-                }
-            }
-        }
-        let mut round = scenario.clone();
-        round.table = Some(Arc::new(InputTable::from_samples(&rows)));
-        pool.install(|| {
-            crate::sweep::run_until(
-                &round,
-                &model,
-                isa,
-                0..rows.len() as u64,
-                crate::cli::CHUNK,
-                &never,
-                |ran| {
-                    for r in ran {
-                        let k = row_sector[r.sample.index as usize];
-                        let stable = r.summary.outcome == Outcome::Stable;
-                        let last = sectors[k].rounds.last_mut().expect("the round is pushed");
-                        last.samples.push((r.sample.inputs.slope_deg, stable));
-                    }
-                    Ok(())
-                },
-            )
-        })?;
-        total += rows.len() as u64;
-        for (k, sector) in sectors.iter_mut().enumerate() {
-            if wanted[k] == 0 {
-                continue;
-            }
-            sector.used += got[k];
-            sector.allowable = pooled_allowable(&sector.rounds);
-            sector.stop = sector.stop.or(stop_rule(
-                sector.allowable,
-                range,
-                args.tolerance,
-                upper[k],
-                (sector.used, args.max_samples_per_sector),
-            ));
-        }
-        if progress {
-            let open = sectors.iter().filter(|s| s.stop.is_none()).count();
-            eprintln!(
-                "touchdown boundary: round {}: {} samples ({total} in all), {open} sectors open",
-                sectors.iter().map(|s| s.rounds.len()).max().unwrap_or(0),
-                rows.len()
-            );
-        }
-    }
-    let name = args.scenario.as_ref().map_or_else(
-        || "the default scenario".to_string(),
-        |p| p.display().to_string(),
-    );
-    let mut t = String::new();
-    let _ = writeln!(t, "# touchdown boundary: {name}\n");
-    let _ = writeln!(
-        t,
-        "Seed {}, slope_deg = {}, tolerance {} deg, batch {} per sector, at most {} samples \
-         per sector{}. {total} samples simulated ({next_candidate} candidates drawn) in \
-         {:.1} s.\n",
-        scenario.seed,
-        dist.toml(),
-        args.tolerance,
-        args.batch,
-        args.max_samples_per_sector,
-        if design == Design::Independent {
-            ""
-        } else {
-            "; inputs drawn independently (the scenario's design is not)"
-        },
-        started.elapsed().as_secs_f64()
-    );
-    let _ = writeln!(
-        t,
-        "## Allowable slope\n\nAs `touchdown report` defines it, per sector of downhill \
-         azimuth relative to the lander; each round drew a sector's slopes below the upper \
-         end of its interval so far, and the interval pools all its rounds.\n"
-    );
-    let _ = writeln!(
-        t,
-        "| azimuth sector | samples | rounds | allowable slope | 95 % interval | stopped |\n\
-         |---|---:|---:|---:|---:|---|"
-    );
-    for (k, s) in sectors.iter().enumerate() {
-        let _ = writeln!(
-            t,
-            "| {:.0}–{:.0} deg | {} | {} | {} | {} | {} |",
-            k as f64 * SECTOR_DEG,
-            (k + 1) as f64 * SECTOR_DEG,
-            s.used,
-            s.rounds.len(),
-            s.allowable.cell(),
-            s.allowable.interval_cell(),
-            s.stop.map_or("", Stop::cell)
-        );
-    }
-    crate::cli::print_out(&t);
-    Ok(())
 }
 
 #[cfg(test)]
@@ -517,8 +274,8 @@ mod tests {
             let upper = next_upper(allowable, (0.0, 45.0), 0.5);
             let samples = (0..2000)
                 .map(|_| {
-                    let u = uniform_open01(&mut rng);
-                    let s = quantile(&conditioned(dist, upper), u, 0);
+                    let u = crate::rng::uniform_open01(&mut rng);
+                    let s = crate::dist::quantile(&conditioned(dist, upper), u, 0);
                     (s, crate::rng::uniform01(&mut rng) < p_stable(s))
                 })
                 .collect();
@@ -596,7 +353,7 @@ mod tests {
         ] {
             scenario.inputs.slope_deg = dist;
             for i in 0..200 {
-                let s = sampling::sample(&scenario, i);
+                let s = crate::sampling::sample(&scenario, i);
                 assert_eq!(with_slope_below(s, dist, dist.support().1), s);
                 let below = with_slope_below(s, dist, 12.0);
                 assert!(below.inputs.slope_deg <= 12.0, "{below:?}");

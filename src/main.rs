@@ -1,3 +1,3 @@
 fn main() -> std::process::ExitCode {
-    touchdown::cli::main()
+    touchdown::commands::main()
 }

@@ -7,7 +7,7 @@
 //! octagonal prism, the thesis's lander), the struts' length and the footpad discs are
 //! proportions of the leg geometry, while every footpad is drawn where the trace has it.
 
-use crate::plot::Table;
+use crate::output::columns::Table;
 use crate::reference::Model;
 use crate::scenario::Scenario;
 use crate::slope::Surface;

@@ -14,7 +14,10 @@ use std::path::{Path, PathBuf};
 /// The layers, from the ground up, and the top-level modules of `src/` in each. The kernels
 /// (a crate of their own) are below all of them.
 const LAYERS: &[(&str, &[&str])] = &[
-    ("data model", &["rng", "dist", "qmc", "stability", "scenario"]),
+    (
+        "data model",
+        &["rng", "dist", "qmc", "stability", "scenario"],
+    ),
     ("physics", &["slope", "terrain", "control", "reference"]),
     ("Monte Carlo engine", &["sampling", "sweep"]),
     ("files", &["output", "table"]),
@@ -32,7 +35,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ),
     ("the sweep run", &["run"]),
     ("pictures", &["plot", "scene", "animate", "view"]),
-    ("commands", &["commands", "cli"]),
+    ("commands", &["commands"]),
 ];
 
 /// A source file and the module path it defines (`["scenario", "read"]`).
@@ -132,7 +135,7 @@ fn paths_at(code: &str, mut i: usize, prefix: Vec<String>, out: &mut Vec<Vec<Str
                 match c {
                     '{' => depth += 1,
                     '}' | ',' if depth == 1 => {
-                        if code[start..i + k].trim().len() > 0 {
+                        if !code[start..i + k].trim().is_empty() {
                             paths_at(code, start, path.clone(), out);
                         }
                         start = i + k + 1;
@@ -242,7 +245,11 @@ fn arrows_only_go_down_and_no_file_imports_another_in_a_circle() {
             edges[k].insert(target);
         }
     }
-    assert!(up.is_empty(), "imports from a lower layer to a higher one:\n{}", up.join("\n"));
+    assert!(
+        up.is_empty(),
+        "imports from a lower layer to a higher one:\n{}",
+        up.join("\n")
+    );
     // A circle: a file that reaches itself (depth-first search, colouring).
     let mut state = vec![0u8; all.len()];
     let mut stack: Vec<usize> = Vec::new();
@@ -275,9 +282,19 @@ fn arrows_only_go_down_and_no_file_imports_another_in_a_circle() {
         {
             let names: Vec<String> = circle
                 .iter()
-                .map(|&c| all[c].path.strip_prefix(&src).unwrap().display().to_string())
+                .map(|&c| {
+                    all[c]
+                        .path
+                        .strip_prefix(&src)
+                        .unwrap()
+                        .display()
+                        .to_string()
+                })
                 .collect();
-            panic!("files that import each other in a circle: {}", names.join(" -> "));
+            panic!(
+                "files that import each other in a circle: {}",
+                names.join(" -> ")
+            );
         }
     }
 }

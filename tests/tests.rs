@@ -9,6 +9,7 @@ mod cpus;
 mod inputs;
 mod interrupt;
 mod lander;
+mod layers;
 mod outcome_rules;
 mod outputs;
 mod paired_sweeps;

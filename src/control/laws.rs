@@ -58,7 +58,7 @@ static LAWS: std::sync::Mutex<Vec<(String, std::sync::Arc<dyn Law>)>> =
     std::sync::Mutex::new(Vec::new());
 
 /// Registers `law` under `name` for scenarios to name (`[control] law = "NAME"`): a
-/// program that embeds touchdown calls this before `cli::main` (see
+/// program that embeds touchdown calls this before `commands::main` (see
 /// `examples/user_law.rs`). A later registration under the same name replaces it.
 pub fn register_law(name: &str, law: impl Law + 'static) {
     let mut laws = LAWS

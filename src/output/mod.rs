@@ -1,6 +1,7 @@
 //! Arrow files: fields that carry their units, provenance in the schema metadata, and
 //! files that appear under their name only when complete.
 
+pub mod columns;
 pub mod format;
 pub mod merge;
 pub mod read;

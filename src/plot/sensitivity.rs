@@ -1,7 +1,7 @@
 //! The picture of `touchdown sensitivity --png`: per output, the first-order and total
 //! Sobol index of every varied input as bars, with their 95 % bootstrap intervals.
 
-use super::{Area, FONT, drawing, save_png};
+use super::canvas::{Area, FONT, drawing, save_png};
 use crate::sensitivity::{Analysis, Indices, OUTPUTS};
 use plotters::prelude::*;
 use std::path::Path;

@@ -1,7 +1,7 @@
 //! The picture of `touchdown study`: the allowable slope of each azimuth sector against the
 //! varied value, with its 95 % intervals, and the static tipping limit beside it.
 
-use super::{Area, FONT, SERIES_COLOURS, drawing, legend, save_png, span};
+use super::canvas::{Area, FONT, SERIES_COLOURS, drawing, legend, save_png, span};
 use crate::stats::{Allowable, SECTOR_DEG, SECTORS};
 use crate::study::{About, Row};
 use plotters::prelude::*;

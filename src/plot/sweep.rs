@@ -1,7 +1,8 @@
 //! Pictures of a sweep file: the stability map, the tipped share per slope bin, and the
 //! distributions of peak CG acceleration and damper stroke.
 
-use super::{Area, FONT, OUTCOME_COLOURS, Table, drawing, legend, save_png, span};
+use super::canvas::{Area, FONT, OUTCOME_COLOURS, drawing, legend, save_png, span};
+use crate::output::columns::Table;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
 use crate::stability::static_limit_deg;

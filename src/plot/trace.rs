@@ -4,7 +4,8 @@
 //! a scenario with a control loop adds the thrust (on the lander, each thruster's firings,
 //! the propellant used) and what the sensors read against the true state.
 
-use super::{Area, FONT, Line, SERIES_COLOURS, Table, drawing, line_panel, save_png, span};
+use super::canvas::{Area, FONT, Line, SERIES_COLOURS, drawing, line_panel, save_png, span};
+use crate::output::columns::Table;
 use crate::output::trace::PHASE_COLUMN;
 use anyhow::anyhow;
 use plotters::prelude::*;

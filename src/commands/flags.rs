@@ -1,0 +1,107 @@
+//! The command line's value parsers (counts, seeds, threads, sizes, kernels), the flag
+//! groups several commands share, and the defaults that follow from other flags.
+
+use crate::output::format::Format;
+use crate::run::KernelChoice;
+use kernels::isa::Isa;
+use std::path::{Path, PathBuf};
+
+/// `--threads`, as `sweep`, `study` and `boundary` take it.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct Threads {
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "T", value_parser = parse_threads, allow_negative_numbers = true)]
+    pub threads: Option<usize>,
+}
+
+/// `--out` and `--format` of a sweep file, as `sweep` and `merge` take them.
+#[derive(clap::Args, Debug, Clone)]
+pub struct SweepOut {
+    /// Output file; `-` writes to standard output (Arrow as an IPC stream). A device or
+    /// FIFO at PATH (or a symbolic link to one) is written into, never replaced.
+    #[arg(long, value_name = "PATH", default_value = "sweep.arrow")]
+    pub out: PathBuf,
+    /// Output format (default: from the extension of --out, `.parquet` for Parquet, else
+    /// Arrow); refused when it contradicts the extension.
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
+}
+
+/// Parses a whole number written as `250000`, `1e6` or `2.5e5`.
+pub fn parse_count(s: &str) -> Result<u64, String> {
+    let t = s.trim().replace('_', "");
+    if let Ok(n) = t.parse::<u64>() {
+        return Ok(n);
+    }
+    let bad = || format!("{s:?} is not a whole number (examples: 250000, 1e6, 2.5e5)");
+    let x: f64 = t.parse().map_err(|_| bad())?;
+    if !x.is_finite() || x < 0.0 || x.fract() != 0.0 {
+        return Err(bad());
+    }
+    if x > 2f64.powi(63) {
+        return Err(format!("{s:?} is too large (at most 2^63)"));
+    }
+    Ok(x as u64)
+}
+
+/// A seed: a whole number a scenario file can hold too (at most 2^63 - 1).
+pub fn parse_seed(s: &str) -> Result<u64, String> {
+    match parse_count(s)? {
+        n if n > i64::MAX as u64 => Err(format!("must be at most {}", i64::MAX)),
+        n => Ok(n),
+    }
+}
+
+pub fn parse_threads(s: &str) -> Result<usize, String> {
+    match parse_count(s)? {
+        0 => Err("must be at least 1".to_string()),
+        n if n > 1024 => Err("must be at most 1024".to_string()),
+        n => Ok(n as usize),
+    }
+}
+
+pub fn parse_every(s: &str) -> Result<u64, String> {
+    match parse_count(s)? {
+        0 => Err("must be at least 1".to_string()),
+        n => Ok(n),
+    }
+}
+
+/// Parses a picture size written `640x480`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("{s:?} is not a size WIDTHxHEIGHT in pixels (example: 640x480)");
+    let (w, h) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
+    Ok((w.parse().map_err(|_| bad())?, h.parse().map_err(|_| bad())?))
+}
+
+pub fn parse_kernel(s: &str) -> Result<KernelChoice, String> {
+    if s == "auto" {
+        return Ok(KernelChoice::Auto);
+    }
+    Isa::from_key(s).map(KernelChoice::Isa).ok_or_else(|| {
+        let keys: Vec<&str> = Isa::ALL.iter().map(|i| i.key()).collect();
+        format!("{s:?} is not a kernel: auto, {}", keys.join(", "))
+    })
+}
+
+/// The output beside `trace` with `extension`, unless `out` names one.
+pub fn beside(trace: &Path, out: Option<&PathBuf>, extension: &str) -> PathBuf {
+    out.cloned()
+        .unwrap_or_else(|| trace.with_extension(extension))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_parse_in_plain_and_scientific_notation() {
+        assert_eq!(parse_count("250000"), Ok(250_000));
+        assert_eq!(parse_count("1e6"), Ok(1_000_000));
+        assert_eq!(parse_count("2.5e5"), Ok(250_000));
+        assert_eq!(parse_count("1_000"), Ok(1000));
+        for bad in ["-1", "1.5", "abc", "1e30", "nan", ""] {
+            assert!(parse_count(bad).is_err(), "{bad}");
+        }
+    }
+}

@@ -1,0 +1,106 @@
+//! The command line: each command's raw flags (clap), checked into settings and handed to
+//! the layers below; the program's entry, its error messages and exit codes.
+
+pub mod animate;
+pub mod boundary;
+pub mod compare;
+pub mod flags;
+pub mod merge;
+pub mod plot;
+mod print;
+pub mod report;
+pub mod scenario;
+pub mod sensitivity;
+pub mod study;
+pub mod sweep;
+pub mod trace;
+pub mod view;
+
+use clap::{Parser, Subcommand};
+
+/// Monte Carlo touchdown simulation of legged landers on asteroids.
+#[derive(Parser, Debug)]
+#[command(name = "touchdown", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Print the default scenario as a commented TOML file to edit.
+    Scenario,
+    /// Run one sample with the reference model and write its time history.
+    Trace(trace::TraceArgs),
+    /// Run a Monte Carlo sweep through the SIMD kernels and write one row per sample.
+    Sweep(sweep::SweepArgs),
+    /// Summarise a sweep file: outcomes with 95 % intervals, the allowable slope per
+    /// azimuth sector, peak loads (Markdown on stdout).
+    Report(report::ReportArgs),
+    /// Compare two sweeps of the same seed sample by sample (paired: the same landers
+    /// wherever the scenarios draw an input alike): outcome shares, their differences with
+    /// 95 % intervals, and which samples changed outcome (Markdown on stdout).
+    Compare(compare::CompareArgs),
+    /// Sobol sensitivity indices of every input drawn at random, for P(stable), P(tipped),
+    /// peak CG acceleration and longest damper stroke, from a sweep run with
+    /// `design = "sobol-indices"` (Markdown on stdout).
+    Sensitivity(sensitivity::SensitivityArgs),
+    /// Run the sweep at each of several values of one scenario key (footpad radius, CG
+    /// height, crush strength...) and tabulate outcome shares and the allowable slope per
+    /// sector against it (Arrow, Markdown, PNG with the static limit).
+    Study(study::StudyArgs),
+    /// Join the shard files of one sweep (`sweep --shard K/N`) into the file the sweep
+    /// writes when run in one process.
+    Merge(merge::MergeArgs),
+    /// Draw PNG pictures of a sweep file (stability map, tipped share per slope, load
+    /// distributions) or of a trace file (CG and leg time histories, 3D path, shock along
+    /// Z_B).
+    Plot(plot::PlotArgs),
+    /// Animate a trace file as a GIF: the lander in 3D on its slope, the CG's trail, the
+    /// contact forces and thrust plumes, with time, tilt and outcome.
+    Animate(animate::AnimateArgs),
+    /// Write a trace file as one self-contained HTML page: the lander in 3D (drag to orbit,
+    /// wheel to zoom), a time slider with play and pause, and the histories as charts.
+    View(view::ViewArgs),
+    /// Find the allowable slope per azimuth sector directly, by adaptive sampling.
+    Boundary(boundary::BoundaryArgs),
+}
+
+/// The `touchdown` program: parses the command line, runs it, prints an error and returns
+/// exit code 2 (or the code of an interruption) where it fails. A program that embeds
+/// touchdown, to register laws of its own (`control::register_law`), calls this from its
+/// `main`.
+#[must_use]
+pub fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            if let Some(i) = e.downcast_ref::<crate::run::Interrupted>() {
+                eprintln!("touchdown: {i}");
+                return std::process::ExitCode::from(i.code);
+            }
+            eprintln!("touchdown: error: {e:#}");
+            std::process::ExitCode::from(2)
+        }
+    }
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Scenario => scenario::run(),
+        Command::Trace(args) => trace::run(&args),
+        Command::Sweep(args) => sweep::run(&args),
+        Command::Study(args) => study::run(&args),
+        Command::Boundary(args) => boundary::run(&args),
+        Command::Report(args) => report::run(&args),
+        Command::Sensitivity(args) => sensitivity::run(&args),
+        Command::Compare(args) => compare::run(&args),
+        Command::Plot(args) => plot::run(&args),
+        Command::Animate(args) => animate::run(&args),
+        Command::View(args) => view::run(&args),
+        Command::Merge(args) => merge::run(&args),
+    }
+}

@@ -1,0 +1,10 @@
+//! `touchdown scenario`: the default scenario, as a commented TOML file to edit.
+
+use super::print::print_out;
+use crate::scenario::DEFAULT_TOML;
+
+/// Prints the default scenario.
+pub fn run() -> anyhow::Result<()> {
+    print_out(DEFAULT_TOML);
+    Ok(())
+}

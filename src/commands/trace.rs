@@ -1,0 +1,129 @@
+//! `touchdown trace`: one sample run with the reference model, its time history written,
+//! and its inputs and summary told.
+
+use super::flags::{parse_count, parse_every, parse_seed};
+use super::print::{say, shown};
+use crate::reference::Summary;
+use crate::run::trace::{TraceSettings, trace};
+use crate::scenario::Sample;
+use crate::scenario::{INPUT_FIELDS, Scenario};
+use std::path::PathBuf;
+
+/// Flags of `touchdown trace`.
+#[derive(clap::Args, Debug)]
+pub struct TraceArgs {
+    /// A sweep or shard file (Arrow or Parquet): trace its sample I, with the scenario and
+    /// seed it ran with (stored in the file), exactly as its row was computed.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["scenario", "seed"])]
+    pub sweep: Option<PathBuf>,
+    /// Scenario file (TOML); without it (and without --sweep), the default sweep of
+    /// MODEL.md section 11.
+    #[arg(long, value_name = "FILE")]
+    pub scenario: Option<PathBuf>,
+    /// Seed of the sweep (overrides the scenario's `seed`).
+    #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
+    pub seed: Option<u64>,
+    /// The table of inputs the sweep ran (`sweep --inputs`), where it is no longer where
+    /// the sweep file says; with --scenario, row I of this table is the sample.
+    #[arg(long, value_name = "TABLE")]
+    pub inputs: Option<PathBuf>,
+    /// Index of the sample to run, as in the sweep's `sample` column (accepts 1e6, 250000,
+    /// 2.5e5).
+    #[arg(long, value_name = "I", default_value = "0", value_parser = parse_count, allow_negative_numbers = true)]
+    pub sample: u64,
+    /// Arrow IPC file to write the time history to; `-` writes an IPC stream to standard
+    /// output, and a device or FIFO is written into, never replaced.
+    #[arg(long, value_name = "PATH", default_value = "trace.arrow")]
+    pub out: PathBuf,
+    /// Write one row every N steps.
+    #[arg(long, value_name = "N", default_value = "1", value_parser = parse_every, allow_negative_numbers = true)]
+    pub every: u64,
+}
+
+/// Runs `touchdown trace`.
+pub fn run(args: &TraceArgs) -> anyhow::Result<()> {
+    let settings = TraceSettings {
+        sweep: args.sweep.clone(),
+        scenario: args.scenario.clone(),
+        seed: args.seed,
+        inputs: args.inputs.clone(),
+        sample: args.sample,
+        out: args.out.clone(),
+        every: args.every,
+    };
+    let done = trace(&settings)?;
+    let mut text = describe(&done.scenario, &done.sample, &done.summary);
+    text.push_str(&format!(
+        "\nwrote {}: {} rows (every {} of {} steps, and the state at the decision)\n",
+        shown(&args.out),
+        done.rows,
+        args.every,
+        done.summary.steps
+    ));
+    say(&text, &args.out);
+    Ok(())
+}
+
+/// The inputs and summary of a sample, for people.
+#[must_use]
+pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
+    let mut t = format!(
+        "sample {} of seed {} (sample seed {:#018x})\n\ninputs\n",
+        sample.index, scenario.seed, sample.seed
+    );
+    if let Some(table) = &scenario.table {
+        t.insert_str(
+            t.find('\n').unwrap_or(t.len()),
+            &format!(
+                ", row {} of the table of inputs {} (columns: {})",
+                sample.index,
+                table.path.display(),
+                table.columns.join(", ")
+            ),
+        );
+    }
+    for ((name, unit), value) in INPUT_FIELDS.iter().zip(sample.inputs.to_array()) {
+        t.push_str(&format!("  {name:<24} {value:>12.6} {unit}\n"));
+    }
+    for ((name, unit), p) in crate::scenario::PARAMETER_FIELDS
+        .iter()
+        .zip(crate::scenario::Parameter::ALL)
+    {
+        if scenario.sampled[p as usize].is_some() {
+            let value = sample.parameters[p as usize];
+            t.push_str(&format!("  {name:<24} {value:>12.6} {unit} (drawn)\n"));
+        }
+    }
+    if scenario.rms_height_max_m() > 0.0 {
+        t.push_str(&format!(
+            "  {:<24} {:>12} (offset {:.3} m, {:.3} m)\n",
+            "terrain_tile",
+            sample.terrain_tile,
+            sample.terrain_offset_m[0],
+            sample.terrain_offset_m[1]
+        ));
+    }
+    let first = s
+        .first_contact_s
+        .map_or("never".to_string(), |t| format!("{t:.3} s"));
+    t.push_str(&format!(
+        "\nsummary\n  {:<24} {} at {:.3} s ({} steps)\n  {:<24} {first}\n  {:<24} {}\n  {:<24} {:.2} deg (final {:.2} deg)\n  {:<24} {:.4} m\n  {:<24} {:.3} m/s^2 (along Z_B {:.3} m/s^2)\n  {:<24} {:.2} mm\n",
+        "outcome", s.outcome.name(), s.decided_s, s.steps,
+        "first contact",
+        "bounces", s.bounces,
+        "max tilt from normal", s.max_tilt_deg, s.final_tilt_deg,
+        "displacement on surface", s.displacement_m,
+        "peak acceleration", s.peak_acceleration_m_s2, s.peak_acceleration_z_body_m_s2,
+        "max penetration", s.max_penetration_m * 1e3,
+    ));
+    t.push_str("\n  leg  peak normal force N   stroke mm   absorbed J\n");
+    for (k, l) in s.legs.iter().enumerate() {
+        t.push_str(&format!(
+            "  {k:>3}  {:>19.2}   {:>9.3}   {:>10.4}\n",
+            l.peak_normal_force_n,
+            l.stroke_m * 1e3,
+            l.absorbed_j
+        ));
+    }
+    t
+}

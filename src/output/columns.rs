@@ -1,0 +1,100 @@
+//! Any touchdown file read back as named columns (a sweep, shard, trace or study file, Arrow
+//! IPC or Parquet), for what draws or tabulates it.
+
+use crate::output::read::{format_of, open};
+use crate::reference::Outcome;
+use anyhow::anyhow;
+use arrow_array::cast::AsArray;
+use arrow_array::types::Float64Type;
+use arrow_schema::DataType;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Columns of a touchdown file, as `f64` (nulls as NaN), with the schema metadata, the
+/// outcome column (as indices into `Outcome::ALL`) when the file has one, and the other
+/// text columns (a trace's control phase).
+pub struct Table {
+    pub meta: HashMap<String, String>,
+    pub columns: HashMap<String, Vec<f64>>,
+    pub outcome: Vec<u8>,
+    pub texts: HashMap<String, Vec<String>>,
+    pub rows: usize,
+}
+
+impl Table {
+    /// Reads the numeric and text columns `wanted` keeps (and the outcome column) of the
+    /// file at `path`.
+    pub fn read(path: &Path, wanted: impl Fn(&str) -> bool) -> anyhow::Result<Table> {
+        let format = format_of(path)?;
+        let (schema, batches) = open(path, format)?;
+        let meta: HashMap<String, String> = schema
+            .metadata()
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        let mut columns: HashMap<String, Vec<f64>> = HashMap::new();
+        let mut outcome = Vec::new();
+        let mut texts: HashMap<String, Vec<String>> = HashMap::new();
+        let mut rows = 0;
+        for b in batches {
+            let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
+            rows += b.num_rows();
+            for (field, array) in b.schema().fields().iter().zip(b.columns()) {
+                let name = field.name();
+                if name == "outcome" {
+                    let s = array.as_string_opt::<i32>().ok_or_else(|| {
+                        anyhow!("{}: the outcome column is not text", path.display())
+                    })?;
+                    for v in s.iter() {
+                        let v = v.unwrap_or("");
+                        let o = Outcome::from_name(v)
+                            .ok_or_else(|| anyhow!("{}: unknown outcome {v:?}", path.display()))?;
+                        outcome.push(o as u8);
+                    }
+                    continue;
+                }
+                if !wanted(name) {
+                    continue;
+                }
+                if let Some(s) = array.as_string_opt::<i32>() {
+                    texts
+                        .entry(name.clone())
+                        .or_default()
+                        .extend(s.iter().map(|v| v.unwrap_or("").to_string()));
+                    continue;
+                }
+                let values: Vec<f64> = match array.data_type() {
+                    DataType::Float64 => array
+                        .as_primitive::<Float64Type>()
+                        .iter()
+                        .map(|v| v.unwrap_or(f64::NAN))
+                        .collect(),
+                    _ => continue,
+                };
+                columns.entry(name.clone()).or_default().extend(values);
+            }
+        }
+        Ok(Table {
+            meta,
+            columns,
+            outcome,
+            texts,
+            rows,
+        })
+    }
+
+    /// A column by name, or an error naming the file and the column.
+    pub fn column(&self, name: &str, path: &Path) -> anyhow::Result<&[f64]> {
+        self.columns
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| anyhow!("{}: no Float64 column {name}", path.display()))
+    }
+
+    /// The legs of the lander, from the per-leg columns that `suffix` ends.
+    pub fn legs(&self, suffix: &str) -> usize {
+        (0..)
+            .take_while(|k| self.columns.contains_key(&format!("leg{k}_{suffix}")))
+            .count()
+    }
+}

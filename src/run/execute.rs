@@ -1,0 +1,257 @@
+//! Running a plan: the writer, the banner, the rows an interrupted run kept, the workers
+//! with their progress bar, and the file finished or left valid when a signal stops it.
+
+use super::plan::SweepPlan;
+use super::workers::{CHUNK, Interrupted, shown};
+use crate::output::sweep::{SweepInfo, SweepWriter};
+use crate::reference::{Model, Outcome};
+use crate::scenario::Scenario;
+use std::ops::Range;
+
+/// How `execute` runs a plan: on which pool, stopped by which signal flag
+/// (`stop_on_signals`), and what it shows on stderr.
+pub struct RunOptions<'a> {
+    pub pool: &'a rayon::ThreadPool,
+    pub stop: &'a std::sync::Arc<std::sync::atomic::AtomicUsize>,
+    /// A progress bar (when stderr is a terminal).
+    pub progress: bool,
+    /// The line naming the samples, seed, kernel and threads.
+    pub banner: bool,
+    /// Whether the kernel is the widest the CPU runs (`--kernel auto`), for the banner.
+    pub auto_kernel: bool,
+}
+
+/// What `execute` did.
+pub struct Executed {
+    /// Rows in the file (kept from an interrupted run and computed now).
+    pub rows: u64,
+    /// Samples computed by this run.
+    pub computed: u64,
+    pub wall_s: f64,
+    pub stats: crate::sweep::LaneStats,
+    /// Rows per outcome, in the order of `Outcome::ALL`.
+    pub counts: [u64; Outcome::ALL.len()],
+    pub steps: u64,
+    /// Samples of this run that never touched the surface.
+    pub untouched: u64,
+}
+
+/// Runs `plan` and writes its file. A signal (`run.stop`) ends it with an `Interrupted`
+/// error whose message says how to continue (`plan.continue_with`).
+pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Executed> {
+    let (scenario, samples) = (&plan.scenario, plan.samples);
+    let threads = run.pool.current_num_threads();
+    let model = Model::new(scenario);
+    let range = plan.shard.map_or(0..samples, |s| s.range(samples));
+    let kept = plan.resume.as_ref().map_or(0, |r| r.kept_rows());
+    let mut writer = create_writer(plan, &model)?;
+    if run.banner {
+        eprintln!("{}", banner(plan, &range, kept, threads, run.auto_kernel));
+    }
+    let mut counts = [0u64; Outcome::ALL.len()];
+    let mut steps = 0u64;
+    if let Some(from) = &plan.resume {
+        let (kept_counts, kept_steps) = from.copy_kept_rows(range.start, &mut writer)?;
+        for (o, c) in Outcome::ALL.iter().zip(&mut counts) {
+            *c += kept_counts.get(o.name()).copied().unwrap_or(0);
+        }
+        steps += kept_steps;
+    }
+    let todo = (range.start + kept)..range.end;
+    let bar = progress_bar(todo.end - todo.start, run.progress);
+    let start = std::time::Instant::now();
+    let mut computed = 0u64;
+    let mut untouched = 0u64;
+    let ran = run.pool.install(|| {
+        crate::sweep::run_until(
+            scenario,
+            &model,
+            plan.kernel.isa,
+            todo.clone(),
+            CHUNK,
+            run.stop,
+            |rows| {
+                for r in &rows {
+                    counts[r.summary.outcome as usize] += 1;
+                    steps += r.summary.steps;
+                    untouched += u64::from(r.summary.first_contact_s.is_none());
+                }
+                computed += rows.len() as u64;
+                bar.inc(rows.len() as u64);
+                writer.push(rows)
+            },
+        )
+    })?;
+    bar.finish_and_clear();
+    if ran.end < todo.end {
+        return Err(interrupted(plan, writer, run, &range)?);
+    }
+    let rows = writer.finish()?;
+    if let Some(from) = &plan.resume {
+        std::fs::remove_file(&from.path).map_err(|e| {
+            anyhow::anyhow!(
+                "finished {}, but cannot remove {}: {e}",
+                plan.out.display(),
+                from.path.display()
+            )
+        })?;
+    }
+    Ok(Executed {
+        rows,
+        computed,
+        wall_s: start.elapsed().as_secs_f64(),
+        stats: ran.stats,
+        counts,
+        steps,
+        untouched,
+    })
+}
+
+/// The writer of `plan`'s file, its metadata saying what the sweep runs.
+fn create_writer(plan: &SweepPlan, model: &Model) -> anyhow::Result<SweepWriter> {
+    let scenario = &plan.scenario;
+    let control = crate::output::sweep::control_columns(scenario);
+    let parameters = crate::output::sweep::parameter_columns(scenario);
+    let table = scenario
+        .table
+        .as_ref()
+        .map_or_else(Vec::new, |t| t.metadata());
+    let kept_columns = scenario
+        .table
+        .as_ref()
+        .map_or_else(Vec::new, |t| t.kept_fields());
+    let info = SweepInfo {
+        scenario_toml: &plan.text,
+        seed: scenario.seed,
+        samples: plan.samples,
+        lane_type: plan.kernel.arithmetic(),
+        shard: plan.shard,
+        control: &control,
+        parameters: &parameters,
+        table: &table,
+        kept: &kept_columns,
+    };
+    Ok(
+        SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?
+            .with_table(scenario.table.clone()),
+    )
+}
+
+/// The line naming what the sweep runs: samples, seed, table, kernel, threads, shard and
+/// where it resumes.
+fn banner(
+    plan: &SweepPlan,
+    range: &Range<u64>,
+    kept: u64,
+    threads: usize,
+    auto_kernel: bool,
+) -> String {
+    let (scenario, samples) = (&plan.scenario, plan.samples);
+    let shard_note = plan.shard.map_or(String::new(), |s| {
+        format!(
+            ", shard {s} (samples {}..{} of {samples})",
+            range.start, range.end
+        )
+    });
+    let resume_note = plan.resume.as_ref().map_or(String::new(), |r| {
+        format!(
+            ", resuming {} at sample {} ({} rows kept of {})",
+            plan.out.display(),
+            range.start + kept,
+            kept,
+            r.rows
+        )
+    });
+    let table_note = scenario.table.as_ref().map_or(String::new(), |t| {
+        format!(
+            ", inputs from {} ({} rows, {} columns)",
+            t.path.display(),
+            t.rows,
+            t.columns.len()
+        )
+    });
+    format!(
+        "touchdown sweep: {} samples, seed {}{table_note}, kernel {} ({} landers per block{}), {threads} thread{}{shard_note}{resume_note}",
+        range.end - range.start,
+        scenario.seed,
+        plan.kernel.name(),
+        plan.kernel.precision.lanes(),
+        if auto_kernel {
+            "; the widest this CPU runs"
+        } else {
+            ""
+        },
+        if threads == 1 { "" } else { "s" },
+    )
+}
+
+/// A progress bar of `len` samples: hidden unless asked for and stderr is a terminal.
+fn progress_bar(len: u64, show: bool) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !show || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    indicatif::ProgressBar::new(len).with_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} samples  {rate}  ETA {eta}")
+            .expect("valid template")
+            // Whole samples per second (indicatif's own `per_sec` has four decimals).
+            .with_key(
+                "rate",
+                |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                    let _ = write!(w, "{:.0} samples/s", state.per_sec());
+                },
+            ),
+    )
+}
+
+/// Leaves the rows so far in a valid file and returns the `Interrupted` error that says
+/// which signal stopped the sweep and how to continue it.
+fn interrupted(
+    plan: &SweepPlan,
+    writer: SweepWriter,
+    run: &RunOptions<'_>,
+    range: &Range<u64>,
+) -> anyhow::Result<anyhow::Error> {
+    let signal = run.stop.load(std::sync::atomic::Ordering::Relaxed);
+    let (rows, path) = writer.finish_interrupted()?;
+    let name = if signal == signal_hook::consts::SIGTERM as usize {
+        "SIGTERM"
+    } else {
+        "SIGINT"
+    };
+    let message = match path {
+        Some(path) => format!(
+            "interrupted by {name}: {rows} of {} samples done, in {} (a valid file); \
+             continue with: {}",
+            range.end - range.start,
+            path.display(),
+            plan.continue_with
+        ),
+        None => format!(
+            "interrupted by {name}: {rows} of {} samples done, written to {} as a valid \
+             file; it is not a regular file, so the sweep cannot be resumed from it",
+            range.end - range.start,
+            shown(&plan.out)
+        ),
+    };
+    Ok(Interrupted {
+        code: (128 + signal).min(255) as u8,
+        message,
+    }
+    .into())
+}
+
+/// Warns of samples that never touched the surface.
+/// `at` names the sweep among several (a study's value), or is empty.
+pub fn warn_untouched(done: &Executed, scenario: &Scenario, at: &str) {
+    if done.untouched > 0 {
+        eprintln!(
+            "touchdown: warning: {at}{} of the {} samples run never touched the \
+             surface before simulation.t_max_s = {} s (their first_contact_s is empty: they \
+             end bouncing, or tipped if they turned past 90 deg in flight). A release too \
+             high or an upward velocity error for the run's length? See \
+             initial.clearance_m, inputs.release_height_m and inputs.velocity_error_z_m_s",
+            done.untouched, done.computed, scenario.simulation.t_max_s
+        );
+    }
+}
