@@ -1,17 +1,20 @@
 //! touchdown: Monte Carlo touchdown simulation of legged landers on asteroids.
 //!
-//! Layers, from the bottom; each imports only the layers below it:
+//! Layers, from the bottom; a module imports only from its layer and those below, never in
+//! a circle (README "Layout"; `tests/layers.rs` checks it):
 //!
 //! - `kernels` (workspace member): the SIMD lanes and the hot code without I/O.
-//! - Data model: `scenario` reads and validates the inputs.
-//! - Physics: `reference` is the scalar physics of one lander, `control` its control loop,
-//!   `stability` the static tipping limit.
-//! - Monte Carlo engine: `sampling` turns a sample index into inputs (with `qmc` and
-//!   `terrain`), `table` gives the user's own inputs, `sweep` runs samples through the
-//!   kernels on worker threads.
-//! - `output`: Arrow and Parquet files written and read back.
-//! - Statistics: `report`, `weighting`, `sensitivity`, `compare`, `study` (its table) and
-//!   `boundary` (its rules).
+//! - Data model: `scenario` (the scenario file, a sample's values, a table of inputs as
+//!   data), `dist` (distributions), `rng` (random streams), `qmc` (the Sobol sequence),
+//!   `stability` (the static tipping limit).
+//! - Physics: `reference` (the scalar physics of one lander), `control` (its control loop),
+//!   `slope` (the slope a sample lands on), `terrain` (rough-terrain tiles).
+//! - Monte Carlo engine: `sampling` (a sample index to inputs), `sweep` (samples through the
+//!   kernels on worker threads, rows in order).
+//! - Files: `output` (Arrow and Parquet written and read back), `table` (the user's tables
+//!   of inputs read and checked).
+//! - Statistics: `stats` (intervals and the allowable-slope rule), `report`, `weighting`,
+//!   `sensitivity`, `compare`, `study` (its table), `boundary` (its rules).
 //! - `run`: the sweep run (plans, workers, signals, progress, resume), a trace's run, a
 //!   study's values, the boundary search.
 //! - Pictures: `plot`, `scene`, `animate`, `view`.
