@@ -41,7 +41,8 @@ pub use inputs::{
 };
 pub use lander::{Geometry, Lander};
 pub use outcome::Outcome;
-pub use read::{DEFAULT_TOML, with_design, with_seed};
+pub use read::{with_design, with_seed};
+pub use reader::DEFAULT_TOML;
 pub use sample::Sample;
 pub use simulation::Simulation;
 pub use surface::{Roughness, Surface};

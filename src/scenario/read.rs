@@ -3,22 +3,21 @@
 //! without random inputs, a run too short to land). The editing of a scenario's text for
 //! the provenance of a file (`with_seed`, `with_design`) is here too.
 
-use super::control::read_control;
-use super::damper::{StrutAxes, read_damper};
-use super::definition::{Design, Scenario};
+use super::damper::StrutAxes;
+use super::definition::{Design, Scenario, read_scenario};
 use super::draws::{design_inputs, law_grid_size, value_dists};
 use super::error::ScenarioError;
-use super::initial::{Start, read_initial};
-use super::inputs::{Dist, PARAMETERS, Parameter, read_inputs, value_name};
-use super::lander::{Geometry, read_lander};
-use super::outcome::read_outcome;
+use super::initial::Start;
+use super::inputs::{Dist, Parameter, value_name};
+use super::lander::Geometry;
 use super::reader::Reader;
-use super::simulation::read_simulation;
-use super::surface::read_surface;
-use super::thrusters::{read_propulsion, read_thrusters};
 
-/// The commented default scenario, as `touchdown scenario` prints it.
-pub const DEFAULT_TOML: &str = include_str!("default.toml");
+impl Default for Scenario {
+    /// The default scenario: default.toml, the scenario of an empty file.
+    fn default() -> Self {
+        Scenario::from_toml("").expect("the default scenario is valid")
+    }
+}
 
 /// The scenario text `text` with its top-level `seed` set to `seed` (replaced where the text
 /// has one, added before its first key where not), so that a file stores the scenario that
@@ -95,50 +94,7 @@ impl Scenario {
         let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
             ScenarioError::Syntax(e.to_string().trim().to_string())
         })?;
-        let d = Scenario::default();
-        let mut top = Reader::new("", table);
-        let seed = top.integer("seed", d.seed as i64, 0, i64::MAX)? as u64;
-        let design = match top.word(
-            "design",
-            "independent",
-            &["independent", "sobol-indices", "sobol-sequence"],
-        )? {
-            "sobol-indices" => Design::SobolIndices,
-            "sobol-sequence" => Design::SobolSequence,
-            _ => Design::Independent,
-        };
-        let samples = top.integer("samples", d.samples as i64, 1, i64::MAX)? as u64;
-        let gravity_m_s2 = top.non_negative("gravity_m_s2", d.gravity_m_s2)?;
-        let mut sampled = [None; PARAMETERS];
-        let lander = read_lander(&mut top, &d.lander, &mut sampled)?;
-        let surface = read_surface(&mut top, &d.surface, &mut sampled)?;
-        let damper = read_damper(&mut top, &d.damper, &mut sampled)?;
-        let inputs = read_inputs(&mut top, &d.inputs)?;
-        let initial = read_initial(&mut top, &d.initial)?;
-        let simulation = read_simulation(&mut top, &d.simulation)?;
-        let outcome = read_outcome(&mut top, &d.outcome)?;
-        let thrusters = read_thrusters(&mut top)?;
-        let propulsion = read_propulsion(&mut top, &d.propulsion)?;
-        let control = read_control(&mut top)?;
-        top.finish()?;
-        let s = Scenario {
-            seed,
-            design,
-            samples,
-            gravity_m_s2,
-            lander,
-            surface,
-            damper,
-            inputs,
-            sampled,
-            initial,
-            simulation,
-            outcome,
-            thrusters,
-            propulsion,
-            control,
-            table: None,
-        };
+        let s = read_scenario(&mut Reader::top(table))?;
         s.check_leg_counts()?;
         s.check_can_land()?;
         s.check_design()?;
@@ -389,6 +345,7 @@ impl Scenario {
 
 #[cfg(test)]
 mod tests {
+    use super::super::reader::DEFAULT_TOML;
     use super::*;
 
     #[test]
@@ -455,5 +412,132 @@ mod tests {
         assert_eq!(s.inputs.yaw_deg, Dist::Fixed(30.0));
         assert_eq!(s.inputs.pitch_deg, Dist::Fixed(1.5));
         assert!(matches!(s.inputs.roll_deg, Dist::Normal { min, .. } if min == -5.0));
+    }
+    #[test]
+    fn old_default_is_kept() {
+        use crate::scenario::*;
+        use kernels::isa::Precision;
+        struct Old;
+        impl Old {
+            fn default() -> Scenario {
+                let normal = |sd| Dist::Normal {
+                    mean: 0.0,
+                    sd,
+                    min: f64::NEG_INFINITY,
+                    max: f64::INFINITY,
+                };
+                Scenario {
+                    seed: 1,
+                    design: Design::Independent,
+                    samples: 1000,
+                    gravity_m_s2: 0.0168,
+                    lander: Lander {
+                        mass_kg: 100.0,
+                        inertia_kg_m2: [18.0, 18.0, 15.0],
+                        geometry: Geometry::Regular {
+                            legs: 4,
+                            footpad_radius_m: 0.6,
+                            cg_height_m: 0.428936,
+                            first_leg_azimuth_deg: 45.0,
+                        },
+                    },
+                    surface: Surface {
+                        stiffness_n_per_m: 5.0e4,
+                        damping_n_s_per_m: 1.1e3,
+                        friction_coefficient: 0.6,
+                        friction_stiffness_n_per_m: 5.0e4,
+                        friction_damping_n_s_per_m: 1.1e3,
+                        roughness: Roughness {
+                            rms_height_m: 0.0,
+                            node_spacing_m: 0.05,
+                            smoothing_length_m: 0.15,
+                            tile_size_m: 6.4,
+                            tiles: 8,
+                        },
+                    },
+                    damper: Damper {
+                        enabled: false,
+                        area_cm2: 4.5,
+                        stages: vec![Stage {
+                            stroke_m: 0.05,
+                            crush_strength_psi: 50.0,
+                        }],
+                        pre_crushed: true,
+                        initial_peak_factor: 1.75,
+                        initial_peak_stroke_m: 0.002,
+                        strut_axes: StrutAxes::All([0.0, 0.0, -1.0]),
+                    },
+                    inputs: Inputs {
+                        slope_deg: Dist::Uniform {
+                            min: 0.0,
+                            max: 45.0,
+                        },
+                        downhill_azimuth_deg: Dist::Uniform {
+                            min: 0.0,
+                            max: 360.0,
+                        },
+                        release_height_m: Dist::Uniform {
+                            min: 5.0,
+                            max: 10.0,
+                        },
+                        velocity_error_x_m_s: normal(0.05),
+                        velocity_error_y_m_s: normal(0.05),
+                        velocity_error_z_m_s: normal(0.05),
+                        roll_deg: normal(2.0),
+                        pitch_deg: normal(2.0),
+                        yaw_deg: Dist::Fixed(0.0),
+                        rate_x_deg_s: normal(0.5),
+                        rate_y_deg_s: normal(0.5),
+                        rate_z_deg_s: normal(0.5),
+                    },
+                    sampled: [None; PARAMETERS],
+                    initial: Initial {
+                        attitude_reference: AttitudeReference::Vertical,
+                        clearance_m: 0.001,
+                        start: Start::Touchdown,
+                    },
+                    simulation: Simulation {
+                        step_s: 0.001,
+                        flight_step_max_s: 0.05,
+                        precision: Precision::F64,
+                        t_max_s: 120.0,
+                    },
+                    outcome: Outcome {
+                        rest_speed_m_s: 0.005,
+                        rest_rate_deg_s: 0.5,
+                        hold_time_s: 2.0,
+                        bounce_clearance_m: 0.001,
+                        diverged_speed_m_s: 100.0,
+                        diverged_rate_deg_s: 3600.0,
+                        diverged_penetration_m: 0.5,
+                        early_tipping: true,
+                        early_sliding: true,
+                        early_bouncing: true,
+                    },
+                    thrusters: Vec::new(),
+                    propulsion: Propulsion {
+                        isp_s: 220.0,
+                        thrust_error_sd: 0.0,
+                        misalignment_sd_deg: 0.0,
+                    },
+                    control: None,
+                    table: None,
+                }
+            }
+        }
+        assert_eq!(Old::default(), Scenario::default());
+        assert_eq!(
+            Sensors::default(),
+            Sensors {
+                attitude_noise_deg: 0.0,
+                attitude_bias_deg: 0.0,
+                rate_noise_deg_s: 0.0,
+                rate_bias_deg_s: 0.0,
+                velocity_noise_m_s: 0.0,
+                velocity_bias_m_s: 0.0,
+                altitude_noise_m: 0.0,
+                altitude_bias_m: 0.0
+            }
+        );
     }
 }
