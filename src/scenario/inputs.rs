@@ -99,6 +99,12 @@ macro_rules! parameters {
             /// Every parameter, in column order.
             pub const ALL: [Parameter; PARAMETERS] = [$( Parameter::$variant ),*];
 
+            /// The column name.
+            #[must_use]
+            pub fn name(self) -> &'static str {
+                PARAMETER_FIELDS[self as usize].0
+            }
+
             /// The scenario key, with its table.
             #[must_use]
             pub fn key(self) -> &'static str {
@@ -142,14 +148,6 @@ pub fn value_name(k: usize) -> &'static str {
         INPUT_FIELDS[k].0
     } else {
         PARAMETER_FIELDS[k - INPUT_FIELDS.len()].0
-    }
-}
-
-impl Parameter {
-    /// The column name.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        PARAMETER_FIELDS[self as usize].0
     }
 }
 

@@ -238,7 +238,7 @@ impl Reader {
     }
 
     /// `v`, one of the given words, as the value it stands for.
-    pub(crate) fn word_of<T: Copy>(
+    fn word_of<T: Copy>(
         &self,
         key: &str,
         v: &Value,
@@ -272,7 +272,7 @@ impl Reader {
 
     /// A sub-table as a reader of its own (its defaults those at its path), or `None` when
     /// neither the file nor the defaults have it.
-    pub(crate) fn table(&mut self, key: &'static str) -> Result<Option<Reader>, ScenarioError> {
+    fn table(&mut self, key: &'static str) -> Result<Option<Reader>, ScenarioError> {
         let defaults = match self.defaults.get(key) {
             Some(Value::Table(d)) => Some(d.clone()),
             _ => None,
