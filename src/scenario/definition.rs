@@ -27,6 +27,25 @@ pub enum Design {
     SobolSequence,
 }
 
+impl Design {
+    /// The word of each design in a scenario file.
+    pub const WORDS: [(&'static str, Design); 3] = [
+        ("independent", Design::Independent),
+        ("sobol-indices", Design::SobolIndices),
+        ("sobol-sequence", Design::SobolSequence),
+    ];
+
+    /// Its word in a scenario file, quoted as TOML writes it.
+    #[must_use]
+    pub fn toml(self) -> String {
+        let (word, _) = Design::WORDS
+            .into_iter()
+            .find(|(_, d)| *d == self)
+            .expect("a design");
+        format!("\"{word}\"")
+    }
+}
+
 table! {
     /// A complete, validated scenario.
     #[derive(Debug, Clone, PartialEq)]
@@ -36,14 +55,7 @@ table! {
         /// Seed of the whole sweep: sample i draws its inputs from (seed, i) alone.
         seed: u64 = r.integer(key, 0, i64::MAX)?,
         /// How samples draw their inputs.
-        design: Design = r.word(
-            key,
-            &[
-                ("independent", Design::Independent),
-                ("sobol-indices", Design::SobolIndices),
-                ("sobol-sequence", Design::SobolSequence),
-            ],
-        )?,
+        design: Design = r.word(key, &Design::WORDS)?,
         /// Samples a sweep runs when the command line does not say.
         samples: u64 = r.integer(key, 1, i64::MAX)?,
         /// Gravity, along -Z_I.

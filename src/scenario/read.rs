@@ -36,12 +36,7 @@ pub fn with_design(text: &str, design: Design) -> String {
     if Scenario::from_toml(text).is_ok_and(|s| s.design == design) {
         return text.to_string();
     }
-    let word = match design {
-        Design::Independent => "\"independent\"",
-        Design::SobolIndices => "\"sobol-indices\"",
-        Design::SobolSequence => "\"sobol-sequence\"",
-    };
-    with_top_level(text, "design", word)
+    with_top_level(text, "design", &design.toml())
 }
 
 /// `text` with the top-level line `key = value`, in place of the one it has or before its
@@ -105,11 +100,10 @@ impl Scenario {
     /// Refuses a design that cannot run: the Sobol-index design needs inputs drawn at random
     /// (fixed ones carry no variance to share out) and no grid (a grid is not random).
     fn check_design(&self) -> Result<(), ScenarioError> {
-        let word = match self.design {
-            Design::Independent => return Ok(()),
-            Design::SobolIndices => "\"sobol-indices\"",
-            Design::SobolSequence => "\"sobol-sequence\"",
-        };
+        if self.design == Design::Independent {
+            return Ok(());
+        }
+        let word = self.design.toml();
         let invalid = |value: String, allowed: &str| ScenarioError::Invalid {
             key: "design".to_string(),
             value,
@@ -123,7 +117,7 @@ impl Scenario {
                 .find(|p| p.name() == name)
                 .map_or(format!("inputs.{name}"), |p| p.key().to_string());
             return Err(invalid(
-                word.to_string(),
+                word,
                 &format!(
                     "inputs drawn at random: {key} is a grid (give it a uniform \
                      distribution over the same range)"
@@ -133,13 +127,13 @@ impl Scenario {
         let laws = law_grid_size(self.control.as_ref());
         if laws > 1 {
             return Err(invalid(
-                word.to_string(),
+                word,
                 "control law parameters drawn at random, not on a grid",
             ));
         }
         if self.design == Design::SobolIndices && design_inputs(self).is_empty() {
             return Err(invalid(
-                "\"sobol-indices\"".to_string(),
+                word,
                 "at least one input drawn from a distribution (every input is fixed: there \
                  is no variance to share out)",
             ));
@@ -359,6 +353,27 @@ mod tests {
     #[test]
     fn empty_file_is_the_default_scenario() {
         assert_eq!(Scenario::from_toml("").unwrap(), Scenario::default());
+    }
+
+    /// The tables default.toml shows only in comments (`[propulsion]`, `[control]` and its
+    /// laws) show the defaults their declarations give: uncommented, their keys read as
+    /// their empty tables do.
+    #[test]
+    fn the_commented_tables_show_their_defaults() {
+        let shown: Vec<&str> = DEFAULT_TOML
+            .lines()
+            .skip_while(|l| !l.starts_with("# [propulsion]"))
+            .filter_map(|l| l.strip_prefix("# "))
+            .filter(|l| l.parse::<toml::Table>().is_ok() || l.starts_with('['))
+            .collect();
+        let headers: Vec<&str> = shown
+            .iter()
+            .filter(|l| l.starts_with('['))
+            .copied()
+            .collect();
+        assert!(shown.len() > headers.len() + 15, "{shown:?}");
+        let read = |lines: &[&str]| Scenario::from_toml(&lines.join("\n")).unwrap();
+        assert_eq!(read(&shown), read(&headers));
     }
 
     #[test]
