@@ -1,7 +1,6 @@
 //! The `[initial]` table: the initial state besides the sampled inputs.
 
-use super::error::ScenarioError;
-use super::reader::Reader;
+use super::reader::table;
 
 /// Against what the attitude errors and the fall velocity are taken (MODEL.md section 8).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,46 +25,29 @@ pub enum Start {
     Descent,
 }
 
-/// The initial state besides the sampled inputs.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Initial {
-    pub attitude_reference: AttitudeReference,
-    /// Height of the lowest footpad above the surface at touchdown, m.
-    pub clearance_m: f64,
-    pub start: Start,
-}
-
-pub(super) fn read_initial(top: &mut Reader, d: &Initial) -> Result<Initial, ScenarioError> {
-    let Some(mut r) = top.table("initial")? else {
-        return Ok(d.clone());
-    };
-    let reference = match d.attitude_reference {
-        AttitudeReference::Vertical => "vertical",
-        AttitudeReference::Surface => "surface",
-    };
-    let attitude_reference =
-        match r.word("attitude_reference", reference, &["vertical", "surface"])? {
-            "surface" => AttitudeReference::Surface,
-            _ => AttitudeReference::Vertical,
-        };
-    let clearance_m = r.non_negative("clearance_m", d.clearance_m)?;
-    let start = match r.word(
-        "start",
-        match d.start {
-            Start::Touchdown => "touchdown",
-            Start::Release => "release",
-            Start::Descent => "descent",
-        },
-        &["touchdown", "release", "descent"],
-    )? {
-        "release" => Start::Release,
-        "descent" => Start::Descent,
-        _ => Start::Touchdown,
-    };
-    r.finish()?;
-    Ok(Initial {
-        attitude_reference,
-        clearance_m,
-        start,
-    })
+table! {
+    /// The initial state besides the sampled inputs.
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct Initial;
+    fn read_initial(r) with key {
+        /// Against what the attitude errors and the fall velocity are taken.
+        attitude_reference: AttitudeReference = r.word(
+            key,
+            &[
+                ("vertical", AttitudeReference::Vertical),
+                ("surface", AttitudeReference::Surface),
+            ],
+        )?,
+        /// Height of the lowest footpad above the surface at touchdown, m.
+        clearance_m: f64 = r.non_negative(key)?,
+        /// Where a sample starts.
+        start: Start = r.word(
+            key,
+            &[
+                ("touchdown", Start::Touchdown),
+                ("release", Start::Release),
+                ("descent", Start::Descent),
+            ],
+        )?,
+    }
 }

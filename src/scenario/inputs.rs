@@ -5,128 +5,134 @@ use super::reader::Reader;
 pub use crate::dist::Dist;
 use toml::Value;
 
-/// The inputs that every sample draws, in the order they are drawn and written.
-/// `T` is `Dist` in a scenario and `f64` in a sample.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Inputs<T> {
-    /// Slope angle from horizontal, deg.
-    pub slope_deg: T,
-    /// Downhill direction, measured in the X_I Y_I plane from X_I (the lander's yaw is 0), deg.
-    pub downhill_azimuth_deg: T,
-    /// Height of the ballistic fall before touchdown, m (touchdown speed `sqrt(2 g0 h)`).
-    pub release_height_m: T,
-    /// Residual velocity error along X of the attitude reference frame, m/s.
-    pub velocity_error_x_m_s: T,
-    /// Residual velocity error along Y, m/s.
-    pub velocity_error_y_m_s: T,
-    /// Residual velocity error along Z, m/s.
-    pub velocity_error_z_m_s: T,
-    /// Roll error `phi`, deg.
-    pub roll_deg: T,
-    /// Pitch error `theta`, deg.
-    pub pitch_deg: T,
-    /// Yaw `psi`, deg.
-    pub yaw_deg: T,
-    /// Residual body rate about X_B, deg/s.
-    pub rate_x_deg_s: T,
-    /// Residual body rate about Y_B, deg/s.
-    pub rate_y_deg_s: T,
-    /// Residual body rate about Z_B, deg/s.
-    pub rate_z_deg_s: T,
-}
-
-/// Names and units of the sampled inputs, in drawing order.
-pub const INPUT_FIELDS: [(&str, &str); 12] = [
-    ("slope_deg", "deg"),
-    ("downhill_azimuth_deg", "deg"),
-    ("release_height_m", "m"),
-    ("velocity_error_x_m_s", "m/s"),
-    ("velocity_error_y_m_s", "m/s"),
-    ("velocity_error_z_m_s", "m/s"),
-    ("roll_deg", "deg"),
-    ("pitch_deg", "deg"),
-    ("yaw_deg", "deg"),
-    ("rate_x_deg_s", "deg/s"),
-    ("rate_y_deg_s", "deg/s"),
-    ("rate_z_deg_s", "deg/s"),
-];
-
-impl<T: Copy> Inputs<T> {
-    /// The inputs in the order of `INPUT_FIELDS`.
-    #[must_use]
-    pub fn to_array(&self) -> [T; 12] {
-        [
-            self.slope_deg,
-            self.downhill_azimuth_deg,
-            self.release_height_m,
-            self.velocity_error_x_m_s,
-            self.velocity_error_y_m_s,
-            self.velocity_error_z_m_s,
-            self.roll_deg,
-            self.pitch_deg,
-            self.yaw_deg,
-            self.rate_x_deg_s,
-            self.rate_y_deg_s,
-            self.rate_z_deg_s,
-        ]
-    }
-
-    /// The inverse of `to_array`.
-    #[must_use]
-    pub fn from_array(a: [T; 12]) -> Self {
-        Inputs {
-            slope_deg: a[0],
-            downhill_azimuth_deg: a[1],
-            release_height_m: a[2],
-            velocity_error_x_m_s: a[3],
-            velocity_error_y_m_s: a[4],
-            velocity_error_z_m_s: a[5],
-            roll_deg: a[6],
-            pitch_deg: a[7],
-            yaw_deg: a[8],
-            rate_x_deg_s: a[9],
-            rate_y_deg_s: a[10],
-            rate_z_deg_s: a[11],
+/// Declares the inputs once: the struct `Inputs`, their names and units (`INPUT_FIELDS`),
+/// the ranges they must stay in and their order in an array.
+macro_rules! inputs {
+    ($( $(#[$doc:meta])* $field:ident [$unit:literal] $range:expr ),* $(,)?) => {
+        /// The inputs that every sample draws, in the order they are drawn and written.
+        /// `T` is `Dist` in a scenario and `f64` in a sample.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct Inputs<T> {
+            $( $(#[$doc])* pub $field: T, )*
         }
-    }
+
+        /// Names and units of the sampled inputs, in drawing order.
+        pub const INPUT_FIELDS: [(&str, &str); 12] = [$( (stringify!($field), $unit) ),*];
+
+        /// The range each input (`INPUT_FIELDS`, in order) must stay in.
+        const INPUT_RANGES: [Range; 12] = [$( $range ),*];
+
+        impl<T: Copy> Inputs<T> {
+            /// The inputs in the order of `INPUT_FIELDS`.
+            #[must_use]
+            pub fn to_array(&self) -> [T; 12] {
+                [$( self.$field ),*]
+            }
+
+            /// The inverse of `to_array`.
+            #[must_use]
+            pub fn from_array(a: [T; 12]) -> Self {
+                let [$( $field ),*] = a;
+                Inputs { $( $field ),* }
+            }
+        }
+    };
 }
 
-/// The scenario parameters that may be drawn per sample like the inputs: a distribution in
-/// place of the number at their key (`Parameter::key`). Each drawn one is a column of the
-/// sweep, named as here, after the inputs'.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Parameter {
+inputs! {
+    /// Slope angle from horizontal.
+    slope_deg ["deg"] Range {
+        min: 0.0,
+        max: 90.0,
+        max_open: true,
+        text: "values from 0 up to, not including, 90 deg",
+    },
+    /// Downhill direction, measured in the X_I Y_I plane from X_I (the lander's yaw is 0).
+    downhill_azimuth_deg ["deg"] ANY,
+    /// Height of the ballistic fall before touchdown (touchdown speed `sqrt(2 g0 h)`).
+    release_height_m ["m"] Range::at_least(0.0, "values of at least 0 m"),
+    /// Residual velocity error along X of the attitude reference frame.
+    velocity_error_x_m_s ["m/s"] ANY,
+    /// Residual velocity error along Y.
+    velocity_error_y_m_s ["m/s"] ANY,
+    /// Residual velocity error along Z.
+    velocity_error_z_m_s ["m/s"] ANY,
+    /// Roll error `phi`.
+    roll_deg ["deg"] ANY,
+    /// Pitch error `theta`.
+    pitch_deg ["deg"] ANY,
+    /// Yaw `psi`.
+    yaw_deg ["deg"] ANY,
+    /// Residual body rate about X_B.
+    rate_x_deg_s ["deg/s"] ANY,
+    /// Residual body rate about Y_B.
+    rate_y_deg_s ["deg/s"] ANY,
+    /// Residual body rate about Z_B.
+    rate_z_deg_s ["deg/s"] ANY,
+}
+
+/// Declares the parameters once: the enum `Parameter`, their keys, names and units
+/// (`PARAMETER_FIELDS`) and whether they must be greater than 0 (else at least 0).
+macro_rules! parameters {
+    ($( $(#[$doc:meta])* $variant:ident = $table:literal . $name:ident [$unit:literal]
+        positive: $positive:literal ),* $(,)?) => {
+        /// The scenario parameters that may be drawn per sample like the inputs: a
+        /// distribution in place of the number at their key (`Parameter::key`). Each drawn
+        /// one is a column of the sweep, named as here, after the inputs'.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum Parameter {
+            $( $(#[$doc])* $variant, )*
+        }
+
+        /// Number of `Parameter`s.
+        pub const PARAMETERS: usize = [$( stringify!($variant) ),*].len();
+
+        /// Names (the column's and the key's last part) and units of the parameters, in the
+        /// order of `Parameter::ALL`.
+        pub const PARAMETER_FIELDS: [(&str, &str); PARAMETERS] =
+            [$( (stringify!($name), $unit) ),*];
+
+        /// Whether each parameter (`Parameter::ALL`) must be greater than 0 (else at least 0).
+        const PARAMETER_POSITIVE: [bool; PARAMETERS] = [$( $positive ),*];
+
+        impl Parameter {
+            /// Every parameter, in column order.
+            pub const ALL: [Parameter; PARAMETERS] = [$( Parameter::$variant ),*];
+
+            /// The column name.
+            #[must_use]
+            pub fn name(self) -> &'static str {
+                PARAMETER_FIELDS[self as usize].0
+            }
+
+            /// The scenario key, with its table.
+            #[must_use]
+            pub fn key(self) -> &'static str {
+                match self {
+                    $( Parameter::$variant => concat!($table, ".", stringify!($name)), )*
+                }
+            }
+        }
+    };
+}
+
+parameters! {
     /// `lander.mass_kg` (the inertia stays as given).
-    MassKg,
+    MassKg = "lander".mass_kg ["kg"] positive: true,
     /// `lander.cg_height_m`: every footpad this far below the CG.
-    CgHeightM,
+    CgHeightM = "lander".cg_height_m ["m"] positive: true,
     /// `surface.stiffness_n_per_m`.
-    StiffnessNPerM,
+    StiffnessNPerM = "surface".stiffness_n_per_m ["N/m"] positive: true,
     /// `surface.damping_n_s_per_m`.
-    DampingNSPerM,
+    DampingNSPerM = "surface".damping_n_s_per_m ["N s/m"] positive: false,
     /// `surface.friction_coefficient`.
-    FrictionCoefficient,
+    FrictionCoefficient = "surface".friction_coefficient ["1"] positive: false,
     /// `damper.crush_strength_psi` (a single-stage cartridge).
-    CrushStrengthPsi,
+    CrushStrengthPsi = "damper".crush_strength_psi ["psi"] positive: true,
     /// `surface.roughness.rms_height_m`: the terrain tiles, built for the largest value,
     /// scaled to each sample's.
-    RmsHeightM,
+    RmsHeightM = "surface.roughness".rms_height_m ["m"] positive: false,
 }
-
-/// Number of `Parameter`s.
-pub const PARAMETERS: usize = 7;
-
-/// Names (the column's and the key's last part) and units of the parameters, in the order
-/// of `Parameter::ALL`.
-pub const PARAMETER_FIELDS: [(&str, &str); PARAMETERS] = [
-    ("mass_kg", "kg"),
-    ("cg_height_m", "m"),
-    ("stiffness_n_per_m", "N/m"),
-    ("damping_n_s_per_m", "N s/m"),
-    ("friction_coefficient", "1"),
-    ("crush_strength_psi", "psi"),
-    ("rms_height_m", "m"),
-];
 
 /// Number of values a sample draws: the inputs (`INPUT_FIELDS`), then the parameters
 /// (`PARAMETER_FIELDS`).
@@ -145,57 +151,25 @@ pub fn value_name(k: usize) -> &'static str {
     }
 }
 
-impl Parameter {
-    /// Every parameter, in column order.
-    pub const ALL: [Parameter; PARAMETERS] = [
-        Parameter::MassKg,
-        Parameter::CgHeightM,
-        Parameter::StiffnessNPerM,
-        Parameter::DampingNSPerM,
-        Parameter::FrictionCoefficient,
-        Parameter::CrushStrengthPsi,
-        Parameter::RmsHeightM,
-    ];
-
-    /// The column name.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        PARAMETER_FIELDS[self as usize].0
-    }
-
-    /// The scenario key, with its table.
-    #[must_use]
-    pub fn key(self) -> &'static str {
-        match self {
-            Parameter::MassKg => "lander.mass_kg",
-            Parameter::CgHeightM => "lander.cg_height_m",
-            Parameter::StiffnessNPerM => "surface.stiffness_n_per_m",
-            Parameter::DampingNSPerM => "surface.damping_n_s_per_m",
-            Parameter::FrictionCoefficient => "surface.friction_coefficient",
-            Parameter::CrushStrengthPsi => "damper.crush_strength_psi",
-            Parameter::RmsHeightM => "surface.roughness.rms_height_m",
-        }
-    }
-}
-
 /// The distribution of each parameter drawn per sample, `None` where the scenario gives a
 /// number (which its own field holds); indexed by `Parameter as usize`.
 pub type Sampled = [Option<Dist>; PARAMETERS];
 
-/// Reads parameter `which` at its key of `r`: a number (`positive`: greater than 0, else at
-/// least 0), or a distribution whose values all are, recorded in `sampled`. Gives the
-/// number, or the distribution's median: the value of the scenario's own field, which the
-/// sweep's samples replace by their draws.
+/// Reads the parameter at `key` of `r` (`Parameter::key`): a number (greater than 0 or at
+/// least 0, as `PARAMETER_FIELDS` says), or a distribution whose values all are, recorded in
+/// `sampled`. Gives the number, or the distribution's median: the value of the scenario's
+/// own field, which the sweep's samples replace by their draws.
 pub(super) fn read_parameter(
     r: &mut Reader,
-    which: Parameter,
-    default: f64,
-    positive: bool,
+    key: &'static str,
     sampled: &mut Sampled,
 ) -> Result<f64, ScenarioError> {
-    debug_assert_eq!(positive, PARAMETER_POSITIVE[which as usize]);
-    let key = which.name();
-    let (number, values, min) = if positive {
+    let path = r.key_path(key);
+    let which = Parameter::ALL
+        .into_iter()
+        .find(|p| p.key() == path)
+        .expect("a key of `Parameter`");
+    let (number, values, min) = if PARAMETER_POSITIVE[which as usize] {
         (
             "a number greater than 0",
             "values greater than 0",
@@ -205,7 +179,7 @@ pub(super) fn read_parameter(
         ("a number of at least 0", "values of at least 0", 0.0)
     };
     match r.take(key) {
-        None => Ok(default),
+        None => r.f64(key),
         Some(v @ Value::Table(_)) => {
             let dist = read_dist(r, key, &v, &Range::at_least(min, values))?;
             let median = match dist {
@@ -239,7 +213,7 @@ struct Range {
 
 impl Range {
     /// Values of at least `min` (`text` says so).
-    fn at_least(min: f64, text: &'static str) -> Range {
+    const fn at_least(min: f64, text: &'static str) -> Range {
         Range {
             min,
             max: f64::INFINITY,
@@ -260,35 +234,6 @@ const ANY: Range = Range {
     text: "any finite value",
 };
 
-/// The range each input (`INPUT_FIELDS`, in order) must stay in.
-const INPUT_RANGES: [Range; 12] = [
-    Range {
-        min: 0.0,
-        max: 90.0,
-        max_open: true,
-        text: "values from 0 up to, not including, 90 deg",
-    },
-    ANY,
-    Range {
-        min: 0.0,
-        max: f64::INFINITY,
-        max_open: false,
-        text: "values of at least 0 m",
-    },
-    ANY,
-    ANY,
-    ANY,
-    ANY,
-    ANY,
-    ANY,
-    ANY,
-    ANY,
-    ANY,
-];
-
-/// Whether each parameter (`Parameter::ALL`) must be greater than 0 (else at least 0).
-const PARAMETER_POSITIVE: [bool; PARAMETERS] = [true, true, true, false, false, true, false];
-
 /// Whether `x` is a value that value `k` of a sample (`Sample::values`: the
 /// inputs, then the parameters) may take; if not, what the values may be.
 pub fn check_value(k: usize, x: f64) -> Result<(), &'static str> {
@@ -306,39 +251,28 @@ pub fn check_value(k: usize, x: f64) -> Result<(), &'static str> {
     }
 }
 
-pub(super) fn read_inputs(
-    top: &mut Reader,
-    d: &Inputs<Dist>,
-) -> Result<Inputs<Dist>, ScenarioError> {
-    let Some(mut r) = top.table("inputs")? else {
-        return Ok(*d);
-    };
-    let ranges = INPUT_RANGES;
-    let defaults = d.to_array();
-    let mut out = defaults;
+/// Reads the `[inputs]` table: every input a number or a distribution.
+pub(super) fn read_inputs(r: &mut Reader) -> Result<Inputs<Dist>, ScenarioError> {
+    let mut out = [Dist::Fixed(0.0); 12];
     for (i, (name, _)) in INPUT_FIELDS.iter().enumerate() {
-        if let Some(v) = r.take(name) {
-            out[i] = read_dist(&r, name, &v, &ranges[i])?;
-        }
+        let v = r.value(name)?;
+        out[i] = read_dist(r, name, &v, &INPUT_RANGES[i])?;
     }
     r.finish()?;
     Ok(Inputs::from_array(out))
 }
 
 /// Reads `key` of `r` as a number or a `{ dist = ..., ... }` table whose values are all at
-/// least `min` (`text` says so in an error), or gives `default` where it is absent: a
+/// least `min` (`text` says so in an error), or gives its default where it is absent: a
 /// scenario parameter that may be sampled like any input.
 pub(super) fn read_dist_at_least(
     r: &mut Reader,
     key: &'static str,
-    default: Dist,
     min: f64,
     text: &'static str,
 ) -> Result<Dist, ScenarioError> {
-    match r.take(key) {
-        None => Ok(default),
-        Some(v) => read_dist(r, key, &v, &Range::at_least(min, text)),
-    }
+    let v = r.value(key)?;
+    read_dist(r, key, &v, &Range::at_least(min, text))
 }
 
 /// Reads a number or a `{ dist = ..., ... }` table.
@@ -350,12 +284,13 @@ fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, Sc
         Value::Float(_) | Value::Integer(_) => Dist::Fixed(r.number(key, v)?),
         Value::Table(t) => {
             let mut t = Reader::new(&r.key_path(key), t.clone());
-            let kind = t.word("dist", "", &["fixed", "uniform", "normal", "grid"])?;
+            let kinds = ["fixed", "uniform", "normal", "grid"].map(|k| (k, k));
+            let kind = t.given("dist", |t| t.word("dist", &kinds))?.unwrap_or("");
             let need = |t: &mut Reader, k: &'static str| -> Result<f64, ScenarioError> {
                 if !t.has(k) {
                     return Err(r.error(key, v, &format!("`{k}` in a {kind:?} distribution")));
                 }
-                t.f64(k, 0.0)
+                t.f64(k)
             };
             let dist = match kind {
                 "fixed" => Dist::Fixed(need(&mut t, "value")?),
@@ -372,8 +307,12 @@ fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, Sc
                     if sd <= 0.0 {
                         return Err(r.error(key, v, "sd greater than 0"));
                     }
-                    let min = t.f64("min", f64::NEG_INFINITY)?;
-                    let max = t.f64("max", f64::INFINITY)?;
+                    let min = t.given("min", |t| t.f64("min"))?;
+                    let max = t.given("max", |t| t.f64("max"))?;
+                    let (min, max) = (
+                        min.unwrap_or(f64::NEG_INFINITY),
+                        max.unwrap_or(f64::INFINITY),
+                    );
                     if min >= max {
                         return Err(r.error(key, v, "min below max"));
                     }
@@ -395,7 +334,7 @@ fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, Sc
                     if !t.has("count") {
                         return Err(r.error(key, v, "`count` in a \"grid\" distribution"));
                     }
-                    let count = t.integer("count", 1, 1, i64::MAX)? as u64;
+                    let count = t.integer("count", 1, i64::MAX)?;
                     if min > max {
                         return Err(r.error(key, v, "min at most max"));
                     }

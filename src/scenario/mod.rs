@@ -1,9 +1,12 @@
 //! The scenario: every parameter of MODEL.md and the distribution of every sampled input,
 //! read from TOML and validated before any work starts; and the data a sample carries.
 //!
-//! Every key is optional; a missing key takes the default of MODEL.md. The default scenario
-//! is the commented file `default.toml` beside this module, which `touchdown scenario`
-//! prints and which a test proves equal to `Scenario::default()`.
+//! Every key is optional; a missing key takes the default of MODEL.md. Each key is typed
+//! once in Rust: the `table!` declaration of its table (`reader`) makes it a documented
+//! field, reads it under the field's name and names its check. Its default is the commented
+//! file `default.toml` beside this module, at the same path, which `touchdown scenario`
+//! prints and `Scenario::default()` reads (as an empty file); the tables it shows only in
+//! comments (`[propulsion]`, `[control]`) give theirs in their declaration (`Reader::or`).
 //!
 //! From the ground up: `error`, the TOML walker `reader`, one module per table of the file
 //! (`inputs`, `lander`, `surface`, ...), a `sample` and a `table` of inputs, the whole
@@ -41,7 +44,8 @@ pub use inputs::{
 };
 pub use lander::{Geometry, Lander};
 pub use outcome::Outcome;
-pub use read::{DEFAULT_TOML, with_design, with_seed};
+pub use read::{with_design, with_seed};
+pub use reader::DEFAULT_TOML;
 pub use sample::Sample;
 pub use simulation::Simulation;
 pub use surface::{Roughness, Surface};

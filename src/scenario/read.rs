@@ -3,22 +3,21 @@
 //! without random inputs, a run too short to land). The editing of a scenario's text for
 //! the provenance of a file (`with_seed`, `with_design`) is here too.
 
-use super::control::read_control;
-use super::damper::{StrutAxes, read_damper};
-use super::definition::{Design, Scenario};
+use super::damper::StrutAxes;
+use super::definition::{Design, Scenario, read_scenario};
 use super::draws::{design_inputs, law_grid_size, value_dists};
 use super::error::ScenarioError;
-use super::initial::{Start, read_initial};
-use super::inputs::{Dist, PARAMETERS, Parameter, read_inputs, value_name};
-use super::lander::{Geometry, read_lander};
-use super::outcome::read_outcome;
+use super::initial::Start;
+use super::inputs::{Dist, Parameter, value_name};
+use super::lander::Geometry;
 use super::reader::Reader;
-use super::simulation::read_simulation;
-use super::surface::read_surface;
-use super::thrusters::{read_propulsion, read_thrusters};
 
-/// The commented default scenario, as `touchdown scenario` prints it.
-pub const DEFAULT_TOML: &str = include_str!("default.toml");
+impl Default for Scenario {
+    /// The default scenario: default.toml, the scenario of an empty file.
+    fn default() -> Self {
+        Scenario::from_toml("").expect("the default scenario is valid")
+    }
+}
 
 /// The scenario text `text` with its top-level `seed` set to `seed` (replaced where the text
 /// has one, added before its first key where not), so that a file stores the scenario that
@@ -37,12 +36,7 @@ pub fn with_design(text: &str, design: Design) -> String {
     if Scenario::from_toml(text).is_ok_and(|s| s.design == design) {
         return text.to_string();
     }
-    let word = match design {
-        Design::Independent => "\"independent\"",
-        Design::SobolIndices => "\"sobol-indices\"",
-        Design::SobolSequence => "\"sobol-sequence\"",
-    };
-    with_top_level(text, "design", word)
+    with_top_level(text, "design", &design.toml())
 }
 
 /// `text` with the top-level line `key = value`, in place of the one it has or before its
@@ -95,50 +89,7 @@ impl Scenario {
         let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
             ScenarioError::Syntax(e.to_string().trim().to_string())
         })?;
-        let d = Scenario::default();
-        let mut top = Reader::new("", table);
-        let seed = top.integer("seed", d.seed as i64, 0, i64::MAX)? as u64;
-        let design = match top.word(
-            "design",
-            "independent",
-            &["independent", "sobol-indices", "sobol-sequence"],
-        )? {
-            "sobol-indices" => Design::SobolIndices,
-            "sobol-sequence" => Design::SobolSequence,
-            _ => Design::Independent,
-        };
-        let samples = top.integer("samples", d.samples as i64, 1, i64::MAX)? as u64;
-        let gravity_m_s2 = top.non_negative("gravity_m_s2", d.gravity_m_s2)?;
-        let mut sampled = [None; PARAMETERS];
-        let lander = read_lander(&mut top, &d.lander, &mut sampled)?;
-        let surface = read_surface(&mut top, &d.surface, &mut sampled)?;
-        let damper = read_damper(&mut top, &d.damper, &mut sampled)?;
-        let inputs = read_inputs(&mut top, &d.inputs)?;
-        let initial = read_initial(&mut top, &d.initial)?;
-        let simulation = read_simulation(&mut top, &d.simulation)?;
-        let outcome = read_outcome(&mut top, &d.outcome)?;
-        let thrusters = read_thrusters(&mut top)?;
-        let propulsion = read_propulsion(&mut top, &d.propulsion)?;
-        let control = read_control(&mut top)?;
-        top.finish()?;
-        let s = Scenario {
-            seed,
-            design,
-            samples,
-            gravity_m_s2,
-            lander,
-            surface,
-            damper,
-            inputs,
-            sampled,
-            initial,
-            simulation,
-            outcome,
-            thrusters,
-            propulsion,
-            control,
-            table: None,
-        };
+        let s = read_scenario(&mut Reader::top(table))?;
         s.check_leg_counts()?;
         s.check_can_land()?;
         s.check_design()?;
@@ -149,11 +100,10 @@ impl Scenario {
     /// Refuses a design that cannot run: the Sobol-index design needs inputs drawn at random
     /// (fixed ones carry no variance to share out) and no grid (a grid is not random).
     fn check_design(&self) -> Result<(), ScenarioError> {
-        let word = match self.design {
-            Design::Independent => return Ok(()),
-            Design::SobolIndices => "\"sobol-indices\"",
-            Design::SobolSequence => "\"sobol-sequence\"",
-        };
+        if self.design == Design::Independent {
+            return Ok(());
+        }
+        let word = self.design.toml();
         let invalid = |value: String, allowed: &str| ScenarioError::Invalid {
             key: "design".to_string(),
             value,
@@ -167,7 +117,7 @@ impl Scenario {
                 .find(|p| p.name() == name)
                 .map_or(format!("inputs.{name}"), |p| p.key().to_string());
             return Err(invalid(
-                word.to_string(),
+                word,
                 &format!(
                     "inputs drawn at random: {key} is a grid (give it a uniform \
                      distribution over the same range)"
@@ -177,13 +127,13 @@ impl Scenario {
         let laws = law_grid_size(self.control.as_ref());
         if laws > 1 {
             return Err(invalid(
-                word.to_string(),
+                word,
                 "control law parameters drawn at random, not on a grid",
             ));
         }
         if self.design == Design::SobolIndices && design_inputs(self).is_empty() {
             return Err(invalid(
-                "\"sobol-indices\"".to_string(),
+                word,
                 "at least one input drawn from a distribution (every input is fixed: there \
                  is no variance to share out)",
             ));
@@ -389,6 +339,7 @@ impl Scenario {
 
 #[cfg(test)]
 mod tests {
+    use super::super::reader::DEFAULT_TOML;
     use super::*;
 
     #[test]
@@ -402,6 +353,27 @@ mod tests {
     #[test]
     fn empty_file_is_the_default_scenario() {
         assert_eq!(Scenario::from_toml("").unwrap(), Scenario::default());
+    }
+
+    /// The tables default.toml shows only in comments (`[propulsion]`, `[control]` and its
+    /// laws) show the defaults their declarations give: uncommented, their keys read as
+    /// their empty tables do.
+    #[test]
+    fn the_commented_tables_show_their_defaults() {
+        let shown: Vec<&str> = DEFAULT_TOML
+            .lines()
+            .skip_while(|l| !l.starts_with("# [propulsion]"))
+            .filter_map(|l| l.strip_prefix("# "))
+            .filter(|l| l.parse::<toml::Table>().is_ok() || l.starts_with('['))
+            .collect();
+        let headers: Vec<&str> = shown
+            .iter()
+            .filter(|l| l.starts_with('['))
+            .copied()
+            .collect();
+        assert!(shown.len() > headers.len() + 15, "{shown:?}");
+        let read = |lines: &[&str]| Scenario::from_toml(&lines.join("\n")).unwrap();
+        assert_eq!(read(&shown), read(&headers));
     }
 
     #[test]

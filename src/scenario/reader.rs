@@ -7,20 +7,78 @@
 //! nobody asked for, with the closest known key as a hint.
 
 use super::error::ScenarioError;
+use std::sync::LazyLock;
 use toml::{Table, Value};
 
-/// One table of the scenario file, with the dotted path that leads to it.
+/// The commented default scenario, as `touchdown scenario` prints it: the one place that
+/// gives every key of its tables its default (the reader takes a missing key's value from
+/// here, at the same path).
+pub const DEFAULT_TOML: &str = include_str!("default.toml");
+
+static DEFAULTS: LazyLock<Table> =
+    LazyLock::new(|| DEFAULT_TOML.parse().expect("default.toml is TOML"));
+
+/// One table of the scenario file, with the dotted path that leads to it and the defaults
+/// of its keys.
 pub(crate) struct Reader {
     path: String,
     table: Table,
+    defaults: Table,
     known: Vec<&'static str>,
 }
 
+/// Declares a table of the scenario file once: its struct, every key a documented field,
+/// and the function that reads it, each key under its field's name (`$key` names it in the
+/// field's reading expression, which sees the fields read before it). A key's default is
+/// default.toml's at the same path, or one the expression gives (`Reader::or`).
+macro_rules! table {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident;
+        $(#[$read_meta:meta])*
+        fn $read:ident($r:ident $(, $arg:ident: $arg_ty:ty)*) with $key:ident {
+            $( $(#[$field_meta:meta])* $field:ident: $ty:ty = $value:expr ),* $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        pub struct $name {
+            $( $(#[$field_meta])* pub $field: $ty, )*
+        }
+
+        $(#[$read_meta])*
+        pub(super) fn $read(
+            $r: &mut $crate::scenario::reader::Reader $(, $arg: $arg_ty)*
+        ) -> Result<$name, $crate::scenario::error::ScenarioError> {
+            $(
+                #[allow(unused_mut)]
+                let mut $field: $ty = {
+                    #[allow(unused_variables)]
+                    let $key: &'static str = stringify!($field);
+                    $value
+                };
+            )*
+            $r.finish()?;
+            Ok($name { $($field),* })
+        }
+    };
+}
+pub(crate) use table;
+
 impl Reader {
+    /// The top level of a scenario file, its defaults those of default.toml.
+    pub(crate) fn top(table: Table) -> Self {
+        Reader {
+            defaults: DEFAULTS.clone(),
+            ..Reader::new("", table)
+        }
+    }
+
+    /// A table without defaults (a distribution, a thruster).
     pub(crate) fn new(path: &str, table: Table) -> Self {
         Reader {
             path: path.to_string(),
             table,
+            defaults: Table::new(),
             known: Vec::new(),
         }
     }
@@ -42,22 +100,66 @@ impl Reader {
         }
     }
 
-    /// Takes `key` out of the table, remembering that it is a known key.
+    /// Takes `key` out of the file's table, remembering that it is a known key.
     pub(crate) fn take(&mut self, key: &'static str) -> Option<Value> {
         self.known.push(key);
         self.table.remove(key)
     }
 
+    /// Whether the file gives `key`.
     pub(crate) fn has(&self, key: &str) -> bool {
         self.table.contains_key(key)
     }
 
-    /// A finite number (integers are accepted where a float is wanted).
-    pub(crate) fn f64(&mut self, key: &'static str, default: f64) -> Result<f64, ScenarioError> {
-        match self.take(key) {
-            None => Ok(default),
-            Some(v) => self.number(key, &v),
+    /// `read` of `key` where the file gives it, else `None` (a key without a default).
+    pub(crate) fn given<T>(
+        &mut self,
+        key: &'static str,
+        read: impl FnOnce(&mut Self) -> Result<T, ScenarioError>,
+    ) -> Result<Option<T>, ScenarioError> {
+        if self.has(key) {
+            read(self).map(Some)
+        } else {
+            self.known.push(key);
+            Ok(None)
         }
+    }
+
+    /// Gives `key` the default `value` where default.toml gives it none.
+    pub(crate) fn or(&mut self, key: &str, value: impl Into<Value>) -> &mut Self {
+        self.defaults.entry(key).or_insert_with(|| value.into());
+        self
+    }
+
+    /// The file's value at `key`, else its default.
+    pub(crate) fn value(&mut self, key: &'static str) -> Result<Value, ScenarioError> {
+        self.get(key, |_, v| Ok(v.clone()), |_, v| Ok(v.clone()))
+    }
+
+    /// The file's value at `key` read by `read`, else the default read by `default`, else
+    /// an error (a key with no default that the file leaves out).
+    fn get<T>(
+        &mut self,
+        key: &'static str,
+        read: impl FnOnce(&Self, &Value) -> Result<T, ScenarioError>,
+        default: impl FnOnce(&Self, &Value) -> Result<T, ScenarioError>,
+    ) -> Result<T, ScenarioError> {
+        match self.take(key) {
+            Some(v) => read(self, &v),
+            None => match self.defaults.get(key) {
+                Some(v) => default(self, v),
+                None => Err(ScenarioError::Invalid {
+                    key: self.key_path(key),
+                    value: "nothing".into(),
+                    allowed: "a value".into(),
+                }),
+            },
+        }
+    }
+
+    /// A finite number (integers are accepted where a float is wanted).
+    pub(crate) fn f64(&mut self, key: &'static str) -> Result<f64, ScenarioError> {
+        self.get(key, |r, v| r.number(key, v), |r, v| r.number(key, v))
     }
 
     pub(crate) fn number(&self, key: &str, v: &Value) -> Result<f64, ScenarioError> {
@@ -73,87 +175,82 @@ impl Reader {
         }
     }
 
-    /// A number checked by `ok`, whose failure message is `allowed`.
+    /// A number checked by `ok`, whose failure message is `allowed` (a default is not
+    /// checked: `ok` may depend on keys the file gives).
     pub(crate) fn f64_where(
         &mut self,
         key: &'static str,
-        default: f64,
         allowed: &str,
         ok: impl Fn(f64) -> bool,
     ) -> Result<f64, ScenarioError> {
-        match self.take(key) {
-            None => Ok(default),
-            Some(v) => {
-                let x = self.number(key, &v)?;
-                if ok(x) {
-                    Ok(x)
-                } else {
-                    Err(self.error(key, &v, allowed))
-                }
+        let checked = |r: &Self, v: &Value| {
+            let x = r.number(key, v)?;
+            if ok(x) {
+                Ok(x)
+            } else {
+                Err(r.error(key, v, allowed))
             }
-        }
+        };
+        self.get(key, checked, |r, v| r.number(key, v))
     }
 
-    pub(crate) fn positive(
-        &mut self,
-        key: &'static str,
-        default: f64,
-    ) -> Result<f64, ScenarioError> {
-        self.f64_where(key, default, "a number greater than 0", |x| x > 0.0)
+    pub(crate) fn positive(&mut self, key: &'static str) -> Result<f64, ScenarioError> {
+        self.f64_where(key, "a number greater than 0", |x| x > 0.0)
     }
 
-    pub(crate) fn non_negative(
-        &mut self,
-        key: &'static str,
-        default: f64,
-    ) -> Result<f64, ScenarioError> {
-        self.f64_where(key, default, "a number of at least 0", |x| x >= 0.0)
+    pub(crate) fn non_negative(&mut self, key: &'static str) -> Result<f64, ScenarioError> {
+        self.f64_where(key, "a number of at least 0", |x| x >= 0.0)
     }
 
     /// An integer in `min..=max`.
-    pub(crate) fn integer(
+    pub(crate) fn integer<T: TryFrom<i64>>(
         &mut self,
         key: &'static str,
-        default: i64,
         min: i64,
         max: i64,
-    ) -> Result<i64, ScenarioError> {
-        match self.take(key) {
-            None => Ok(default),
-            Some(v) => match v {
-                Value::Integer(i) if (min..=max).contains(&i) => Ok(i),
-                _ => Err(self.error(key, &v, &format!("a whole number from {min} to {max}"))),
-            },
-        }
+    ) -> Result<T, ScenarioError> {
+        let read = |r: &Self, v: &Value| {
+            match v {
+                Value::Integer(i) if (min..=max).contains(i) => T::try_from(*i).ok(),
+                _ => None,
+            }
+            .ok_or_else(|| r.error(key, v, &format!("a whole number from {min} to {max}")))
+        };
+        self.get(key, read, read)
     }
 
-    pub(crate) fn bool(&mut self, key: &'static str, default: bool) -> Result<bool, ScenarioError> {
-        match self.take(key) {
-            None => Ok(default),
-            Some(Value::Boolean(b)) => Ok(b),
-            Some(v) => Err(self.error(key, &v, "true or false")),
-        }
+    pub(crate) fn bool(&mut self, key: &'static str) -> Result<bool, ScenarioError> {
+        let read = |r: &Self, v: &Value| match v {
+            Value::Boolean(b) => Ok(*b),
+            _ => Err(r.error(key, v, "true or false")),
+        };
+        self.get(key, read, read)
     }
 
-    /// One of the given words.
-    pub(crate) fn word(
+    /// One of the given words, as the value it stands for.
+    pub(crate) fn word<T: Copy>(
         &mut self,
         key: &'static str,
-        default: &'static str,
-        words: &[&'static str],
-    ) -> Result<&'static str, ScenarioError> {
-        match self.take(key) {
-            None => Ok(default),
-            Some(v) => {
-                if let Value::String(s) = &v
-                    && let Some(w) = words.iter().find(|w| *w == s)
-                {
-                    return Ok(w);
-                }
-                let list: Vec<String> = words.iter().map(|w| format!("\"{w}\"")).collect();
-                Err(self.error(key, &v, &format!("one of {}", list.join(", "))))
-            }
+        words: &[(&'static str, T)],
+    ) -> Result<T, ScenarioError> {
+        let read = |r: &Self, v: &Value| r.word_of(key, v, words);
+        self.get(key, read, read)
+    }
+
+    /// `v`, one of the given words, as the value it stands for.
+    fn word_of<T: Copy>(
+        &self,
+        key: &str,
+        v: &Value,
+        words: &[(&'static str, T)],
+    ) -> Result<T, ScenarioError> {
+        if let Value::String(s) = v
+            && let Some((_, w)) = words.iter().find(|(w, _)| w == s)
+        {
+            return Ok(*w);
         }
+        let list: Vec<String> = words.iter().map(|(w, _)| format!("\"{w}\"")).collect();
+        Err(self.error(key, v, &format!("one of {}", list.join(", "))))
     }
 
     /// A vector of three finite numbers.
@@ -173,17 +270,49 @@ impl Reader {
         }
     }
 
-    /// A sub-table as a reader of its own, or `None` when absent.
-    pub(crate) fn table(&mut self, key: &'static str) -> Result<Option<Reader>, ScenarioError> {
-        match self.take(key) {
-            None => Ok(None),
-            Some(Value::Table(t)) => Ok(Some(Reader::new(&self.key_path(key), t))),
-            Some(v) => Err(self.error(key, &v, "a table")),
-        }
+    /// A sub-table as a reader of its own (its defaults those at its path), or `None` when
+    /// neither the file nor the defaults have it.
+    fn table(&mut self, key: &'static str) -> Result<Option<Reader>, ScenarioError> {
+        let defaults = match self.defaults.get(key) {
+            Some(Value::Table(d)) => Some(d.clone()),
+            _ => None,
+        };
+        let table = match self.take(key) {
+            None if defaults.is_none() => return Ok(None),
+            None => Table::new(),
+            Some(Value::Table(t)) => t,
+            Some(v) => return Err(self.error(key, &v, "a table")),
+        };
+        Ok(Some(Reader {
+            defaults: defaults.unwrap_or_default(),
+            ..Reader::new(&self.key_path(key), table)
+        }))
+    }
+
+    /// The sub-table `key` read by `read`, or `None` when neither the file nor the defaults
+    /// have it.
+    pub(crate) fn optional<T>(
+        &mut self,
+        key: &'static str,
+        read: impl FnOnce(&mut Reader) -> Result<T, ScenarioError>,
+    ) -> Result<Option<T>, ScenarioError> {
+        self.table(key)?.map(|mut t| read(&mut t)).transpose()
+    }
+
+    /// The sub-table `key` read by `read`: where the file leaves it out, its defaults.
+    pub(crate) fn section<T>(
+        &mut self,
+        key: &'static str,
+        read: impl FnOnce(&mut Reader) -> Result<T, ScenarioError>,
+    ) -> Result<T, ScenarioError> {
+        let mut t = self
+            .table(key)?
+            .unwrap_or_else(|| Reader::new(&self.key_path(key), Table::new()));
+        read(&mut t)
     }
 
     /// Fails on the first key that no getter asked for.
-    pub(crate) fn finish(self) -> Result<(), ScenarioError> {
+    pub(crate) fn finish(&mut self) -> Result<(), ScenarioError> {
         if let Some((key, _)) = self.table.iter().next() {
             let hint = closest(key, &self.known)
                 .map(|k| format!(" (did you mean `{}`?)", k))
