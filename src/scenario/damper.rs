@@ -11,7 +11,9 @@ pub const PSI_PA: f64 = 6_894.757_293_168_361;
 /// One stage of a crushable cartridge.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stage {
+    /// The stroke over which this stage crushes, m.
     pub stroke_m: f64,
+    /// The crush strength of its honeycomb, psi (times the cartridge's area: its force).
     pub crush_strength_psi: f64,
 }
 
@@ -46,7 +48,9 @@ table! {
 /// The strut axis of every leg, or one per leg.
 #[derive(Debug, Clone, PartialEq)]
 pub enum StrutAxes {
+    /// One unit axis in B for every leg, from the hip to the footpad.
     All([f64; 3]),
+    /// One unit axis in B per leg, in leg order.
     PerLeg(Vec<[f64; 3]>),
 }
 

@@ -6,19 +6,30 @@ use std::fmt;
 #[derive(Debug, Clone, PartialEq)]
 pub enum ScenarioError {
     /// The file could not be read.
-    Io { path: String, message: String },
+    Io {
+        /// The file as given.
+        path: String,
+        /// What the system said.
+        message: String,
+    },
     /// The text is not TOML.
     Syntax(String),
     /// A key with a value that is not allowed.
     Invalid {
+        /// The dotted key (`lander.mass_kg`).
         key: String,
+        /// The value found, as the file writes it.
         value: String,
+        /// What the key allows, and why.
         allowed: String,
     },
     /// A key that the scenario does not have.
     UnknownKey {
+        /// The dotted key.
         key: String,
+        /// `; did you mean ...?` with the closest known key, or empty.
         hint: String,
+        /// The keys the table knows, listed.
         known: String,
     },
 }

@@ -11,9 +11,13 @@ pub enum Geometry {
     /// `legs` footpads evenly spaced on a circle of `footpad_radius_m` around Z_B,
     /// `cg_height_m` below the CG, the first at `first_leg_azimuth_deg` from X_B.
     Regular {
+        /// Number of legs.
         legs: usize,
+        /// Radius of the footpads' circle around Z_B, m.
         footpad_radius_m: f64,
+        /// Height of the CG above the footpads, m.
         cg_height_m: f64,
+        /// Azimuth of the first leg from X_B, deg.
         first_leg_azimuth_deg: f64,
     },
     /// Explicit footpad positions in B, m.

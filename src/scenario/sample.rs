@@ -7,9 +7,11 @@ use super::inputs::{INPUT_FIELDS, Inputs, PARAMETERS, VALUES};
 /// Everything that makes one sample differ from another.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
+    /// The sample's index in its sweep (its row).
     pub index: u64,
     /// The seed of this sample's generator.
     pub seed: u64,
+    /// The inputs it drew (`INPUT_FIELDS`).
     pub inputs: Inputs<f64>,
     /// The value of each scenario parameter (`Parameter`) for this sample: its draw where
     /// the scenario samples it, else the scenario's value.

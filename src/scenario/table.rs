@@ -16,6 +16,7 @@ pub struct InputTable {
     pub format: &'static str,
     /// SHA-256 of the file's bytes, in hexadecimal (as `sha256sum` prints it).
     pub sha256: String,
+    /// Rows of the table: samples of the sweep.
     pub rows: u64,
     /// The columns it was read with, in the table's order.
     pub columns: Vec<String>,
