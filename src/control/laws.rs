@@ -103,7 +103,7 @@ pub struct DescentDraw {
     /// Gain `k` on the error in the rate of height: acceleration `k (h'_ref - h')`.
     pub gain_per_s: f64,
     /// The burn stops at the first instant at or below the release height with the
-    /// sensed rate of height under this.
+    /// sensed `|h'|` under this.
     pub release_speed_m_s: f64,
 }
 
