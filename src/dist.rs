@@ -11,17 +11,33 @@ pub enum Dist {
     /// Always this value.
     Fixed(f64),
     /// Uniform on `[min, max]`.
-    Uniform { min: f64, max: f64 },
+    Uniform {
+        /// Lower bound.
+        min: f64,
+        /// Upper bound.
+        max: f64,
+    },
     /// Normal, truncated to `[min, max]` (infinite bounds: not truncated).
     Normal {
+        /// Mean of the normal before truncation.
         mean: f64,
+        /// Standard deviation of the normal before truncation.
         sd: f64,
+        /// Lower truncation bound (`-inf`: none).
         min: f64,
+        /// Upper truncation bound (`inf`: none).
         max: f64,
     },
     /// `count` evenly spaced values from `min` to `max`; several grid inputs form their
     /// cartesian product, the last one varying fastest with the sample index.
-    Grid { min: f64, max: f64, count: u64 },
+    Grid {
+        /// First value.
+        min: f64,
+        /// Last value.
+        max: f64,
+        /// Number of values (1: `min` alone).
+        count: u64,
+    },
 }
 
 impl Dist {

@@ -16,7 +16,9 @@ pub struct Surface {
     pub tangent_u: DVec3,
     /// `normal x tangent_u`, horizontal.
     pub tangent_v: DVec3,
+    /// Index of the terrain tile the sample lands on (unused on a bare plane).
     pub tile: usize,
+    /// Where the origin falls on that tile, along `tangent_u` and `tangent_v`, m.
     pub offset_m: [f64; 2],
 }
 

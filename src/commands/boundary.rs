@@ -35,6 +35,7 @@ pub struct BoundaryArgs {
     /// A sector is finished once it has run this many samples.
     #[arg(long, value_name = "N", default_value = "200000", value_parser = parse_count, allow_negative_numbers = true)]
     pub max_samples_per_sector: u64,
+    /// Worker threads (`--threads`).
     #[command(flatten)]
     pub threads: Threads,
     /// No progress on stderr (there is none either when stderr is not a terminal).

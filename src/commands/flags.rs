@@ -52,7 +52,8 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
     }
 }
 
-pub fn parse_threads(s: &str) -> Result<usize, String> {
+/// A worker thread count, 1 to 1024 (`--threads`).
+fn parse_threads(s: &str) -> Result<usize, String> {
     match parse_count(s)? {
         0 => Err("must be at least 1".to_string()),
         n if n > 1024 => Err("must be at most 1024".to_string()),
@@ -60,7 +61,8 @@ pub fn parse_threads(s: &str) -> Result<usize, String> {
     }
 }
 
-pub fn parse_every(s: &str) -> Result<u64, String> {
+/// A positive whole number (every N-th step of a trace).
+pub(super) fn parse_every(s: &str) -> Result<u64, String> {
     match parse_count(s)? {
         0 => Err("must be at least 1".to_string()),
         n => Ok(n),
@@ -74,7 +76,8 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((w.parse().map_err(|_| bad())?, h.parse().map_err(|_| bad())?))
 }
 
-pub fn parse_kernel(s: &str) -> Result<KernelChoice, String> {
+/// A SIMD kernel: `auto` (the best this CPU runs) or an instruction set's key.
+pub(super) fn parse_kernel(s: &str) -> Result<KernelChoice, String> {
     if s == "auto" {
         return Ok(KernelChoice::Auto);
     }
@@ -85,6 +88,7 @@ pub fn parse_kernel(s: &str) -> Result<KernelChoice, String> {
 }
 
 /// The output beside `trace` with `extension`, unless `out` names one.
+#[must_use]
 pub fn beside(trace: &Path, out: Option<&PathBuf>, extension: &str) -> PathBuf {
     out.cloned()
         .unwrap_or_else(|| trace.with_extension(extension))

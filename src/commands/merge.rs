@@ -11,6 +11,7 @@ pub struct MergeArgs {
     /// The shard files, in any order (Arrow IPC or Parquet).
     #[arg(value_name = "SHARD", required = true)]
     pub shards: Vec<PathBuf>,
+    /// Where the merged sweep file goes and its format (`--out`, `--format`).
     #[command(flatten)]
     pub output: SweepOut,
 }

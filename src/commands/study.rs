@@ -42,6 +42,7 @@ pub struct StudyArgs {
     /// without --shard then merges the shards and writes the table.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<Shard>,
+    /// Worker threads (`--threads`).
     #[command(flatten)]
     pub threads: Threads,
     /// No progress bar.

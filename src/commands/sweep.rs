@@ -38,8 +38,10 @@ pub struct SweepArgs {
     /// sweep does not know is refused).
     #[arg(long, requires = "inputs", conflicts_with = "resume")]
     pub keep_columns: bool,
+    /// Worker threads (`--threads`).
     #[command(flatten)]
     pub threads: Threads,
+    /// Where the sweep file goes and its format (`--out`, `--format`).
     #[command(flatten)]
     pub output: SweepOut,
     /// No progress bar.

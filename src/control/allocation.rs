@@ -9,7 +9,9 @@ use glam::DVec3;
 /// both in B, as means over the period.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Wrench {
+    /// Force on the lander, in B, N.
     pub force_b_n: DVec3,
+    /// Torque about the CG, in B, N m.
     pub torque_b_n_m: DVec3,
 }
 

@@ -22,7 +22,12 @@ pub enum Phase {
     /// Before contact is sensed: attitude hold, if any.
     Fall,
     /// Hold-down since the instant at `since_s`, at rest (sensed) for `rest_s`.
-    HoldDown { since_s: f64, rest_s: f64 },
+    HoldDown {
+        /// The control instant contact was first sensed (flight computer's clock), s.
+        since_s: f64,
+        /// How long the sensors have read the lander at rest without a break, s.
+        rest_s: f64,
+    },
     /// The user's law commands (until it says it is done).
     User,
     /// Nothing more to fire.
@@ -52,16 +57,22 @@ pub struct ControlSummary {
     pub firings: u32,
     /// Integral of the thrust magnitude of the thrusters fired by `hold_down`, N s.
     pub hold_down_impulse_n_s: f64,
-    /// The sample's drawn law parameters (NaN where the scenario has no such law).
+    /// The sample's drawn hold-down thrust (NaN without `hold_down`; so are the other
+    /// drawn law parameters without their law).
     pub hold_down_thrust_n: f64,
+    /// The sample's drawn hold-down duration.
     pub hold_down_duration_s: f64,
+    /// The sample's drawn attitude-hold proportional gain.
     pub kp_n_m_per_rad: f64,
+    /// The sample's drawn attitude-hold rate gain.
     pub kd_n_m_s_per_rad: f64,
-    /// When the descent law released the lander, s, and its true state then: the height
-    /// of its footpads (the true CG altitude above the surface plane less the footpads'
-    /// depth below the CG) and its CG velocity in I (NaN: never released, or no descent).
+    /// When the descent law released the lander, s (NaN: never released, or no descent;
+    /// so are the release's state below).
     pub release_time_s: f64,
+    /// Height of the footpads at the release: the true CG altitude above the surface
+    /// plane less the footpads' depth below the CG.
     pub release_altitude_m: f64,
+    /// True CG velocity in I at the release, m/s.
     pub release_velocity_m_s: [f64; 3],
     /// The sample's drawn descent (none without one).
     pub descent: Option<DescentDraw>,
@@ -109,7 +120,8 @@ pub struct LaneControl {
     memory: [f64; LAW_MEMORY],
     /// Which thrusters fire in the segment under way.
     firing_now: [bool; MAX_THRUSTERS],
-    pub summary: ControlSummary,
+    /// What the loop did so far (`finish` adds the propellant).
+    summary: ControlSummary,
 }
 
 /// What a lander's control loop is doing during one step, for traces.

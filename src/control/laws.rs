@@ -44,8 +44,10 @@ pub trait Law: Send + Sync {
 /// A registered law and its name.
 #[derive(Clone)]
 pub struct NamedLaw {
-    pub name: String,
-    pub law: std::sync::Arc<dyn Law>,
+    /// The name it was registered under (`[control] law`).
+    pub(super) name: String,
+    /// The law itself, shared by every worker thread.
+    pub(crate) law: std::sync::Arc<dyn Law>,
 }
 
 impl std::fmt::Debug for NamedLaw {
@@ -92,10 +94,16 @@ pub fn registered(name: &str) -> Option<NamedLaw> {
 /// A sample's descent (`[control.descent]`): its parameters as drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct DescentDraw {
+    /// Height of the lowest footpad above the touchdown point at the descent's start.
     pub start_altitude_m: f64,
+    /// Speed down at the descent's start (before the velocity errors).
     pub start_speed_m_s: f64,
+    /// Deceleration `b` of the braking profile `h'_ref = -sqrt(2 b (h - h_r))`.
     pub braking_m_s2: f64,
+    /// Gain `k` on the error in the rate of height: acceleration `k (h'_ref - h')`.
     pub gain_per_s: f64,
+    /// The burn stops at the first instant at or below the release height with the
+    /// sensed `|h'|` under this.
     pub release_speed_m_s: f64,
 }
 

@@ -11,27 +11,46 @@ use crate::scenario::{Control, Dist, G0_M_S2, Sample, Scenario, Thruster, law_gr
 /// designed, and what the step-size bound needs.
 #[derive(Debug, Clone)]
 pub struct ControlModel {
-    pub config: Control,
+    /// The scenario's `[control]` table: rate, latency, sensors, built-in laws.
+    pub(super) config: Control,
     /// The user's law the scenario names (`[control] law`), if any.
     pub law: Option<NamedLaw>,
+    /// The thrusters as designed (nominal position, direction and thrust, in B).
     pub thrusters: Vec<Thruster>,
+    /// How a commanded wrench is shared among `thrusters`, from their nominal columns.
     pub allocation: Allocation,
+    /// Control period `P = 1 / rate_hz`, s.
     pub period_s: f64,
     /// `isp g0`, m/s: propellant used is the thrust's integral over it.
     pub exhaust_speed_m_s: f64,
-    pub thrust_error_sd: f64,
-    pub misalignment_sd_rad: f64,
-    pub mass_kg: f64,
-    pub gravity_m_s2: f64,
+    /// Standard deviation of each thruster's relative thrust error (drawn per sample,
+    /// truncated at 3 sd).
+    pub(super) thrust_error_sd: f64,
+    /// Standard deviation of each thruster's misalignment about either axis across its
+    /// direction (drawn per sample, truncated at 3 sd).
+    pub(super) misalignment_sd_rad: f64,
+    /// Lander mass, for the descent law's force and the thrust's approach bound.
+    pub(super) mass_kg: f64,
+    /// Gravity `g0`, which the descent law cancels.
+    pub(super) gravity_m_s2: f64,
     /// Depth of the lowest footpad below the CG along `-Z_B`, m: the descent law takes the
     /// footpads' height as the altimeter's CG altitude less this.
     pub footpad_depth_m: f64,
-    pub inertia_min_kg_m2: f64,
-    pub leg_reach_m: f64,
-    pub flight_step_max_s: f64,
-    pub rest_speed_m_s: f64,
-    pub rest_rate_rad_s: f64,
-    pub hold_time_s: f64,
+    /// Smallest principal moment of inertia: with `leg_reach_m` and `flight_step_max_s`,
+    /// the fastest a thrust's moment can turn a footpad toward the surface within a
+    /// longest flight step (`Thrust::approach_m_s`).
+    pub(super) inertia_min_kg_m2: f64,
+    /// Largest distance of a footpad from the CG.
+    pub(super) leg_reach_m: f64,
+    /// Longest step in free flight.
+    pub(super) flight_step_max_s: f64,
+    /// The outcome's rest speed: `hold_down` with `until_rest` stops once sensed below it
+    /// (and below `rest_rate_rad_s`) for `hold_time_s`.
+    pub(super) rest_speed_m_s: f64,
+    /// The outcome's rest body rate.
+    pub(super) rest_rate_rad_s: f64,
+    /// The outcome's hold time.
+    pub(super) hold_time_s: f64,
 }
 
 impl ControlModel {

@@ -6,10 +6,15 @@ use glam::{DQuat, DVec3};
 /// The true state of a lander at a control event, which the sensors read.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Truth {
+    /// Time since the start of the sample, s.
     pub t_s: f64,
+    /// CG position in I, m.
     pub position_m: DVec3,
+    /// CG velocity in I, m/s.
     pub velocity_m_s: DVec3,
+    /// Attitude, B to I.
     pub attitude: DQuat,
+    /// Body rates in B, rad/s.
     pub rate_rad_s: DVec3,
     /// Whether a footpad touched the surface in the last step (the touchdown switches).
     pub contact: bool,

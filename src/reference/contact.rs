@@ -19,6 +19,8 @@ pub struct LegState {
     pub absorbed_j: f64,
     /// Friction anchor in I (meaningful while `anchored`).
     pub anchor_m: DVec3,
+    /// Whether the footpad is in contact with an anchor set: set at touchdown, cleared at
+    /// lift-off.
     pub anchored: bool,
 }
 

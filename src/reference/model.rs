@@ -19,10 +19,15 @@ pub struct Leg {
 /// Contact law parameters (MODEL.md section 5).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact {
+    /// Normal spring stiffness `k` per leg: `F_N = max(0, k d - c (n . v))`.
     pub stiffness_n_per_m: f64,
+    /// Normal damping `c` per leg; 0 is the completely elastic surface.
     pub damping_n_s_per_m: f64,
+    /// Coulomb friction coefficient `mu`: friction is capped at `mu F_N`.
     pub friction_coefficient: f64,
+    /// Stiffness of the stick-slip tangential spring from the footpad to its anchor.
     pub friction_stiffness_n_per_m: f64,
+    /// Damping of the stick-slip tangential spring, on the tangential footpad velocity.
     pub friction_damping_n_s_per_m: f64,
 }
 
@@ -54,22 +59,36 @@ impl Honeycomb {
 /// Outcome thresholds in SI units (rad, not deg).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Thresholds {
+    /// CG speed below which the lander may count as at rest.
     pub rest_speed_m_s: f64,
+    /// Body rate below which the lander may count as at rest.
     pub rest_rate_rad_s: f64,
+    /// How long a rest must last without a break for `stable`.
     pub hold_time_s: f64,
+    /// Clearance the lowest footpad must reach after a lift-off for a bounce to count.
     pub bounce_clearance_m: f64,
+    /// CG speed beyond which the state counts as `diverged`.
     pub diverged_speed_m_s: f64,
+    /// Body rate beyond which the state counts as `diverged`.
     pub diverged_rate_rad_s: f64,
+    /// Footpad penetration beyond which the state counts as `diverged`.
     pub diverged_penetration_m: f64,
+    /// Decide `tipped` at the point of no return, not only past 90 deg of tilt.
     pub early_tipping: bool,
+    /// Decide `sliding` in a steady slide before `t_max` (where `Model::slides_decidable`
+    /// allows it); `Model::new` clears it if the rule fails at the worst corner of the
+    /// parameters the scenario draws.
     pub early_sliding: bool,
+    /// Decide `bouncing` in a flight that cannot end before `t_max`.
     pub early_bouncing: bool,
 }
 
 /// Everything a sweep holds fixed, in the units the physics uses.
 #[derive(Debug, Clone)]
 pub struct Model {
+    /// Gravity `g0`, along `-Z_I`.
     pub gravity_m_s2: f64,
+    /// Lander mass (not reduced by the propellant burnt, MODEL.md section 7).
     pub mass_kg: f64,
     /// Principal moments of inertia about X_B, Y_B, Z_B.
     pub inertia_kg_m2: DVec3,
@@ -77,14 +96,24 @@ pub struct Model {
     pub legs: Vec<Leg>,
     /// Edges of the support polygon: consecutive legs, and the last with the first.
     pub edges: Vec<[usize; 2]>,
+    /// The leg-surface contact law, the same for every leg.
     pub contact: Contact,
+    /// The damper in every leg's strut (`None`: rigid legs).
     pub honeycomb: Option<Honeycomb>,
+    /// The rough-terrain tiles (`None`: the bare slope plane).
     pub terrain: Option<Terrain>,
+    /// Step whenever a footpad may touch the surface within it.
     pub step_s: f64,
+    /// Longest step in free flight, taken only where no footpad can reach the surface.
     pub flight_step_max_s: f64,
+    /// End of a sample: what is undecided by then is decided by the rules at `t_max`.
     pub t_max_s: f64,
+    /// The outcome rules' thresholds.
     pub thresholds: Thresholds,
+    /// Attitude and fall velocity are taken against the surface normal, not the local
+    /// vertical (a lander that aligned itself with the surface before release).
     pub attitude_surface: bool,
+    /// Height of the lowest footpad above the terrain at the start of a sample.
     pub clearance_m: f64,
     /// Where a sample starts (a descent's start from its drawn descent,
     /// `ControlModel::descent_draw`).

@@ -41,10 +41,18 @@ use kernels::outcome::{
 /// How a touchdown ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Outcome {
+    /// At rest and upright, in contact, for the hold time.
     Stable,
+    /// Past 90 deg of tilt, or pivoting over an edge of the support polygon past the point
+    /// of no return.
     Tipped,
+    /// Upright and in contact at `t_max` but still moving, or in a steady slide that must
+    /// last to `t_max`.
     Sliding,
+    /// Airborne at `t_max`, or in a flight that cannot end before it.
     Bouncing,
+    /// A non-finite or exploding state: a defect of the model or its parameters, reported,
+    /// never dropped.
     Diverged,
 }
 
@@ -80,19 +88,27 @@ impl Outcome {
 /// Per-leg results of a sample.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct LegSummary {
+    /// Largest normal force on the footpad over the sample.
     pub peak_normal_force_n: f64,
+    /// Damper stroke at the end (crushing is permanent, so also the largest).
     pub stroke_m: f64,
+    /// Energy the damper absorbed, `∫ F_c ds`.
     pub absorbed_j: f64,
 }
 
 /// The results of one sample (MODEL.md section 9).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Summary {
+    /// How the touchdown ended.
     pub outcome: Outcome,
-    /// Time at which the outcome was decided (t_max for sliding and bouncing), s.
+    /// Time at which the outcome was decided (t_max for sliding and bouncing, unless an
+    /// early rule decided them), s.
     pub decided_s: f64,
+    /// Steps taken up to the decision.
     pub steps: u64,
+    /// Tilt of `Z_B` from the slope normal at the decision.
     pub final_tilt_deg: f64,
+    /// Largest tilt of `Z_B` from the slope normal over the sample.
     pub max_tilt_deg: f64,
     /// Distance the CG moved along the surface plane, m.
     pub displacement_m: f64,
@@ -104,7 +120,9 @@ pub struct Summary {
     pub bounces: u32,
     /// Time of the first contact, s (None if it never touched).
     pub first_contact_s: Option<f64>,
+    /// Deepest penetration of a footpad below the local surface (0 if it never touched), m.
     pub max_penetration_m: f64,
+    /// Per-leg results, in the order of `Model::legs`.
     pub legs: Vec<LegSummary>,
     /// What the control loop did (scenarios with one; boxed, so that the rows of a passive
     /// sweep stay small: a window of them is in memory).

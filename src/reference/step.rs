@@ -15,7 +15,10 @@ pub struct State {
     pub t_s: f64,
     /// What rounding has dropped from `t_s` so far (`add_time`), s.
     pub t_error_s: f64,
+    /// The rigid body: CG position and velocity, attitude, body rates.
     pub body: Body,
+    /// What each leg remembers between steps (damper stroke, friction anchor), in the
+    /// order of `Model::legs`.
     pub legs: Vec<LegState>,
     /// The thrust until the next control event (none without a control loop).
     pub thrust: Thrust,
@@ -30,7 +33,9 @@ pub struct LegReport {
     pub tip_velocity_m_s: DVec3,
     /// Depth below the local surface (negative: clearance), m.
     pub penetration_m: f64,
+    /// Normal force magnitude on the footpad, N (0 out of contact).
     pub normal_n: f64,
+    /// Friction force magnitude on the footpad, N (0 out of contact).
     pub friction_n: f64,
     /// Whether the footpad slips (in contact, friction at its cap).
     pub slipping: bool,
@@ -61,6 +66,7 @@ pub struct StepReport {
     pub moment_n_m: DVec3,
     /// The thrust during the step.
     pub thrust: Thrust,
+    /// Every leg during the step, in the order of `Model::legs`.
     pub legs: Vec<LegReport>,
     /// What the control loop is doing (scenarios with one; filled by `run`).
     pub control: Option<crate::control::ControlReport>,
