@@ -74,7 +74,7 @@ fn thrust_raises_the_static_tipping_limit() {
     // A gear set down gently, aligned with the slope, with a thrust F along -Z_B through
     // the CG from the start: it tips at a = atan(r/h) + asin(F r / (m g0 L))
     // (`thrust_limit_deg`; g0 = 0.0168, m g0 = 1.68 N, so 0.25-1 N moves the limit by
-    // 6-29 deg). As the passive test (tests/validation.rs): 0.5 deg below, over 60 s its
+    // 6-29 deg). As the passive test (validation::tipping): 0.5 deg below, over 60 s its
     // tilt may change by the contact compliance alone ((m g0 + F) / (4 k) ~ 1e-5 m over a
     // ~1 m footprint: ~1e-3 deg; tolerance 1 deg) and its CG move by the settling into the
     // springs (tolerance 3 mm); 0.5 deg above, it must fall over (tilt past 90 deg) within
