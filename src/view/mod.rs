@@ -43,9 +43,9 @@ pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
     file.commit(sink)?;
     Ok(Written {
         times,
-        rows: scene.time.len(),
+        rows: scene.trace.time.len(),
         bytes: page.len() as u64,
-        every: scene.every,
+        every: scene.trace.every,
     })
 }
 
@@ -99,29 +99,29 @@ fn numbers(out: &mut String, values: impl IntoIterator<Item = f64>) {
 /// The trace as the page reads it (its keys are the page's contract); returns it and the
 /// number of times it holds.
 fn trace_json(scene: &Scene) -> (String, usize) {
-    let (t0, t1) = scene.span_s();
+    let (t0, t1) = scene.trace.span_s();
     // Every row of a short trace; a long one at MAX_TIMES evenly spaced times.
-    let times: Vec<f64> = if scene.time.len() <= MAX_TIMES {
-        scene.time.clone()
+    let times: Vec<f64> = if scene.trace.time.len() <= MAX_TIMES {
+        scene.trace.time.clone()
     } else {
         (0..MAX_TIMES)
             .map(|k| t0 + (t1 - t0) * k as f64 / (MAX_TIMES - 1) as f64)
             .collect()
     };
-    let resampled = scene.time.len() > MAX_TIMES;
+    let resampled = scene.trace.time.len() > MAX_TIMES;
     let sk = &scene.sketch;
     let mut o = String::with_capacity(times.len() * 64 * 10);
     o.push('{');
     o.push_str("\"title\":");
-    text(&mut o, &scene.about);
+    text(&mut o, &scene.trace.about);
     o.push_str(",\"outcome\":");
-    text(&mut o, &scene.outcome);
+    text(&mut o, &scene.trace.outcome);
     o.push_str(",\"decided_s\":");
-    num(&mut o, scene.decided_s);
+    num(&mut o, scene.trace.decided_s);
     o.push_str(",\"slope_deg\":");
-    num(&mut o, scene.slope_deg);
+    num(&mut o, scene.trace.slope_deg());
     o.push_str(",\"downhill_azimuth_deg\":");
-    num(&mut o, scene.downhill_azimuth_deg);
+    num(&mut o, scene.trace.downhill_azimuth_deg());
     o.push_str(",\"normal\":");
     vec3(&mut o, scene.surface.normal);
     o.push_str(",\"body\":{\"bottom\":[");
@@ -198,7 +198,7 @@ fn trace_json(scene: &Scene) -> (String, usize) {
     .map(String::from)
     .to_vec();
     let mut peaks: Vec<String> = Vec::new();
-    for k in 0..scene.legs {
+    for k in 0..scene.trace.legs {
         for c in ["tip_x_m", "tip_y_m", "tip_z_m", "stroke_m", "penetration_m"] {
             state.push(format!("leg{k}_{c}"));
         }
@@ -206,7 +206,7 @@ fn trace_json(scene: &Scene) -> (String, usize) {
             peaks.push(format!("leg{k}_{c}"));
         }
     }
-    for j in 0..scene.thrusters {
+    for j in 0..scene.trace.thrusters {
         peaks.push(format!("thruster{j}_thrust_n"));
     }
     o.push_str(",\"series\":{");
@@ -221,7 +221,7 @@ fn trace_json(scene: &Scene) -> (String, usize) {
     };
     for name in &state {
         key(&mut o, name);
-        numbers(&mut o, times.iter().map(|t| scene.value(name, *t)));
+        numbers(&mut o, times.iter().map(|t| scene.trace.value(name, *t)));
     }
     for name in &peaks {
         key(&mut o, name);
@@ -229,14 +229,14 @@ fn trace_json(scene: &Scene) -> (String, usize) {
             &mut o,
             times.iter().enumerate().map(|(k, t)| {
                 let since = if resampled && k > 0 { times[k - 1] } else { *t };
-                scene.peak_between(name, since, *t)
+                scene.trace.peak_between(name, since, *t)
             }),
         );
     }
     key(&mut o, "tilt_deg");
     numbers(&mut o, times.iter().map(|t| scene.pose(*t, *t).tilt_deg));
     o.push_str("},\"phase\":");
-    match scene.phases() {
+    match scene.trace.phases() {
         Some(_) => {
             o.push('[');
             for (k, t) in times.iter().enumerate() {
@@ -271,7 +271,7 @@ fn trace_json(scene: &Scene) -> (String, usize) {
         o.push_str("]}");
     };
     let per_leg = |c: &str, scale: f64| -> Vec<(String, String, f64)> {
-        (0..scene.legs)
+        (0..scene.trace.legs)
             .map(|k| (format!("leg {k}"), format!("leg{k}_{c}"), scale))
             .collect()
     };
@@ -302,9 +302,9 @@ fn trace_json(scene: &Scene) -> (String, usize) {
         "damper stroke per leg (mm)",
         &per_leg("stroke_m", 1000.0),
     );
-    if scene.thrusters > 0 {
+    if scene.trace.thrusters > 0 {
         o.push(',');
-        let lines: Vec<(String, String, f64)> = (0..scene.thrusters)
+        let lines: Vec<(String, String, f64)> = (0..scene.trace.thrusters)
             .map(|j| {
                 (
                     format!("thruster {j}"),
