@@ -71,7 +71,7 @@ impl View<'_> {
         } else {
             format!("{speed:.1}x speed")
         };
-        let (w, h) = (self.width as i32, self.height as i32);
+        let w = self.width as i32;
         text(
             &speed_text,
             (
@@ -94,6 +94,27 @@ impl View<'_> {
                 colour,
             )?;
         }
+        self.draw_scale_and_axes(root, big, small, pad)
+    }
+
+    /// A scale bar of a round length near a sixth of the width, and the axes of I from a
+    /// corner (`big` and `small` the captions' text sizes, `pad` their margin).
+    fn draw_scale_and_axes(
+        &self,
+        root: &Area<'_>,
+        big: f64,
+        small: f64,
+        pad: i32,
+    ) -> anyhow::Result<()> {
+        let text = |t: &str, at: (i32, i32), size: f64, colour: RGBColor| {
+            root.draw(&Text::new(
+                t.to_string(),
+                at,
+                (FONT, size).into_font().color(&colour),
+            ))
+            .map_err(drawing)
+        };
+        let (w, h) = (self.width as i32, self.height as i32);
         // A scale bar of a round length near a sixth of the width.
         let want = self.width / 6.0 / self.scale;
         let bar = [0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0]
