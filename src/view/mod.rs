@@ -109,7 +109,6 @@ fn trace_json(scene: &Scene) -> (String, usize) {
             .collect()
     };
     let resampled = scene.trace.time.len() > MAX_TIMES;
-    let sk = &scene.sketch;
     let mut o = String::with_capacity(times.len() * 64 * 10);
     o.push('{');
     o.push_str("\"title\":");
@@ -124,19 +123,33 @@ fn trace_json(scene: &Scene) -> (String, usize) {
     num(&mut o, scene.trace.downhill_azimuth_deg());
     o.push_str(",\"normal\":");
     vec3(&mut o, scene.surface.normal);
+    sketch_and_ground(&mut o, scene);
+    o.push_str("},\"time\":");
+    numbers(&mut o, times.iter().copied());
+
+    series(&mut o, scene, &times, resampled);
+    charts(&mut o, scene);
+    o.push_str("]}");
+    (o, times.len())
+}
+
+/// The lander's sketch (body, legs, footpads, thrusters) and the ground patch under its
+/// path, as the page's keys `body` to `ground`.
+fn sketch_and_ground(o: &mut String, scene: &Scene) {
+    let sk = &scene.sketch;
     o.push_str(",\"body\":{\"bottom\":[");
     for (k, p) in sk.bottom.iter().enumerate() {
         if k > 0 {
             o.push(',');
         }
-        vec3(&mut o, *p);
+        vec3(o, *p);
     }
     o.push_str("],\"top\":[");
     for (k, p) in sk.top.iter().enumerate() {
         if k > 0 {
             o.push(',');
         }
-        vec3(&mut o, *p);
+        vec3(o, *p);
     }
     o.push_str("]},\"legs\":[");
     for (k, l) in sk.legs.iter().enumerate() {
@@ -144,28 +157,28 @@ fn trace_json(scene: &Scene) -> (String, usize) {
             o.push(',');
         }
         o.push_str("{\"hip\":");
-        vec3(&mut o, l.hip);
+        vec3(o, l.hip);
         o.push_str(",\"mount\":");
-        vec3(&mut o, l.mount);
+        vec3(o, l.mount);
         o.push_str(",\"tip0\":");
-        vec3(&mut o, l.tip0);
+        vec3(o, l.tip0);
         o.push_str(",\"axis\":");
-        vec3(&mut o, l.axis);
+        vec3(o, l.axis);
         o.push('}');
     }
     o.push_str("],\"footpad_radius_m\":");
-    num(&mut o, sk.footpad_radius_m);
+    num(o, sk.footpad_radius_m);
     o.push_str(",\"thrusters\":[");
     for (j, t) in sk.thrusters.iter().enumerate() {
         if j > 0 {
             o.push(',');
         }
         o.push_str("{\"position\":");
-        vec3(&mut o, t.position);
+        vec3(o, t.position);
         o.push_str(",\"direction\":");
-        vec3(&mut o, t.direction);
+        vec3(o, t.direction);
         o.push_str(",\"max_thrust_n\":");
-        num(&mut o, t.max_thrust_n);
+        num(o, t.max_thrust_n);
         o.push('}');
     }
     let g = scene.ground(2.0 * sk.reach_m() + 1.0, 0.1, 40_000);
@@ -175,21 +188,23 @@ fn trace_json(scene: &Scene) -> (String, usize) {
         g
     };
     o.push_str("],\"ground\":{\"origin\":");
-    vec3(&mut o, g.origin);
+    vec3(o, g.origin);
     o.push_str(",\"u\":");
-    vec3(&mut o, g.u);
+    vec3(o, g.u);
     o.push_str(",\"v\":");
-    vec3(&mut o, g.v);
+    vec3(o, g.v);
     o.push_str(",\"spacing_m\":");
-    num(&mut o, g.spacing_m);
+    num(o, g.spacing_m);
     let _ = write!(o, ",\"nu\":{},\"nv\":{},\"heights\":", g.nu, g.nv);
     match &g.heights {
-        Some(h) => numbers(&mut o, h.iter().copied()),
+        Some(h) => numbers(o, h.iter().copied()),
         None => o.push_str("null"),
     }
-    o.push_str("},\"time\":");
-    numbers(&mut o, times.iter().copied());
+}
 
+/// The state columns between rows and the forces and thrusts at their peak, at `times`
+/// (`resampled`: the peaks since the previous time), the tilt and the phases.
+fn series(o: &mut String, scene: &Scene, times: &[f64], resampled: bool) {
     // The state columns between rows; the forces and thrusts at their peak since the
     // previous time (when resampled).
     let mut state: Vec<String> = [
@@ -220,21 +235,21 @@ fn trace_json(scene: &Scene) -> (String, usize) {
         o.push(':');
     };
     for name in &state {
-        key(&mut o, name);
-        numbers(&mut o, times.iter().map(|t| scene.trace.value(name, *t)));
+        key(o, name);
+        numbers(o, times.iter().map(|t| scene.trace.value(name, *t)));
     }
     for name in &peaks {
-        key(&mut o, name);
+        key(o, name);
         numbers(
-            &mut o,
+            o,
             times.iter().enumerate().map(|(k, t)| {
                 let since = if resampled && k > 0 { times[k - 1] } else { *t };
                 scene.trace.peak_between(name, since, *t)
             }),
         );
     }
-    key(&mut o, "tilt_deg");
-    numbers(&mut o, times.iter().map(|t| scene.pose(*t, *t).tilt_deg));
+    key(o, "tilt_deg");
+    numbers(o, times.iter().map(|t| scene.pose(*t, *t).tilt_deg));
     o.push_str("},\"phase\":");
     match scene.trace.phases() {
         Some(_) => {
@@ -243,14 +258,16 @@ fn trace_json(scene: &Scene) -> (String, usize) {
                 if k > 0 {
                     o.push(',');
                 }
-                text(&mut o, scene.pose(*t, *t).phase.as_deref().unwrap_or(""));
+                text(o, scene.pose(*t, *t).phase.as_deref().unwrap_or(""));
             }
             o.push(']');
         }
         None => o.push_str("null"),
     }
+}
 
-    // The charts under the view.
+/// The charts under the view.
+fn charts(o: &mut String, scene: &Scene) {
     o.push_str(",\"charts\":[");
     let chart = |o: &mut String, title: &str, lines: &[(String, String, f64)]| {
         o.push_str("{\"title\":");
@@ -281,24 +298,24 @@ fn trace_json(scene: &Scene) -> (String, usize) {
             .map(|a| (a.to_string(), format!("{prefix}{a}{suffix}"), 1.0))
             .collect()
     };
-    chart(&mut o, "CG position (m)", &xyz("", "_m"));
+    chart(o, "CG position (m)", &xyz("", "_m"));
     o.push(',');
-    chart(&mut o, "CG velocity (m/s)", &xyz("v", "_m_s"));
+    chart(o, "CG velocity (m/s)", &xyz("v", "_m_s"));
     o.push(',');
     chart(
-        &mut o,
+        o,
         "tilt from the slope normal (deg)",
         &[("tilt".to_string(), "tilt_deg".to_string(), 1.0)],
     );
     o.push(',');
     chart(
-        &mut o,
+        o,
         "normal force per leg (N)",
         &per_leg("normal_force_n", 1.0),
     );
     o.push(',');
     chart(
-        &mut o,
+        o,
         "damper stroke per leg (mm)",
         &per_leg("stroke_m", 1000.0),
     );
@@ -313,8 +330,6 @@ fn trace_json(scene: &Scene) -> (String, usize) {
                 )
             })
             .collect();
-        chart(&mut o, "thrust per thruster (N)", &lines);
+        chart(o, "thrust per thruster (N)", &lines);
     }
-    o.push_str("]}");
-    (o, times.len())
 }
