@@ -176,7 +176,8 @@ pub(crate) fn line_panel(
 }
 
 /// A 2D chart of a picture.
-type Chart2d<'a, 'b> = ChartContext<
+/// A chart of two axes of numbers on a bitmap.
+pub(crate) type Chart2d<'a, 'b> = ChartContext<
     'a,
     BitMapBackend<'b>,
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
