@@ -14,18 +14,27 @@ pub(super) struct Camera {
 
 /// What stays fixed over the frames: the scene, the view's axes and scale, the ground.
 pub(super) struct View<'a> {
+    /// The trace drawn.
     pub(super) scene: &'a Scene,
+    /// The picture's rightward direction in I.
     pub(super) right: DVec3,
+    /// The picture's upward direction in I.
     pub(super) up: DVec3,
+    /// Towards the viewer, in I.
     pub(super) back: DVec3,
+    /// Pixels per metre.
     pub(super) scale: f64,
+    /// The picture's width, pixels.
     pub(super) width: f64,
+    /// The picture's height, pixels.
     pub(super) height: f64,
     /// Whether the whole path fits the picture (a still camera) or the camera follows.
     pub(super) still: Option<DVec3>,
+    /// The ground patch under the path.
     pub(super) ground: Ground,
     /// The CG's path, thinned to points at least 5 mm apart, with their times.
     pub(super) path: Vec<(f64, DVec3)>,
+    /// Unit direction towards the light, in I.
     pub(super) light: DVec3,
 }
 
@@ -38,6 +47,7 @@ const AZIMUTH_FROM_SIDE_DEG: f64 = 20.0;
 const GLIDE_FRAMES: usize = 12;
 
 impl<'a> View<'a> {
+    /// The view of `scene` in a picture of `width` by `height` pixels.
     pub(super) fn new(scene: &'a Scene, width: u32, height: u32) -> View<'a> {
         let az = (scene.trace.downhill_azimuth_deg() - 90.0 + AZIMUTH_FROM_SIDE_DEG).to_radians();
         let el = ELEVATION_DEG.to_radians();
@@ -168,6 +178,7 @@ impl<'a> View<'a> {
         )
     }
 
+    /// The pixel `p` falls on.
     pub(super) fn pixel(&self, c: Camera, p: DVec3) -> (i32, i32) {
         let (x, y, _) = self.project(c, p);
         (x.round() as i32, y.round() as i32)

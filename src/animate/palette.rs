@@ -7,15 +7,25 @@ use plotters::style::RGBColor;
 pub(super) const TRANSPARENT: u8 = 255;
 
 // Colours of the picture.
+/// The background.
 pub(super) const BACKGROUND: RGBColor = RGBColor(250, 250, 252);
+/// The ground.
 pub(super) const GROUND: RGBColor = RGBColor(158, 146, 132);
+/// The body.
 pub(super) const BODY: RGBColor = RGBColor(214, 162, 42);
+/// The struts.
 pub(super) const STRUT: RGBColor = RGBColor(70, 72, 80);
+/// The dampers' pistons.
 pub(super) const PISTON: RGBColor = RGBColor(175, 178, 186);
+/// The footpads.
 pub(super) const FOOTPAD: RGBColor = RGBColor(55, 58, 66);
+/// The CG's trail.
 pub(super) const TRAIL: RGBColor = RGBColor(31, 119, 180);
+/// The contact-force arrows.
 pub(super) const FORCE: RGBColor = RGBColor(214, 39, 40);
+/// The thrust plumes.
 pub(super) const PLUME: RGBColor = RGBColor(110, 190, 255);
+/// The captions' text.
 pub(super) const INK: RGBColor = RGBColor(20, 20, 24);
 /// Outcome colours in the order of `Outcome::ALL`, as the sweep plots draw them.
 pub(super) const OUTCOME: [RGBColor; 5] = OUTCOME_COLOURS;
@@ -50,6 +60,7 @@ pub(super) struct Palette {
 }
 
 impl Palette {
+    /// The palette and its lookup table.
     pub(super) fn new() -> Palette {
         let mut colours: Vec<RGBColor> = vec![BACKGROUND];
         for m in [GROUND, BODY, PISTON] {

@@ -15,6 +15,7 @@ pub(super) enum Part {
 }
 
 impl Part {
+    /// Draws the part on `root`.
     pub(super) fn draw(&self, root: &Area<'_>) -> anyhow::Result<()> {
         let p = |q: &(f64, f64, f64)| (q.0.round() as i32, q.1.round() as i32);
         match self {

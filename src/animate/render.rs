@@ -16,10 +16,13 @@ use std::path::Path;
 /// What `animate` wrote.
 #[derive(Debug, Clone, Copy)]
 pub struct Rendered {
+    /// Frames written.
     pub frames: usize,
+    /// Trace seconds per second of playback.
     pub speed: f64,
     /// Playback of one loop, the final hold included, s.
     pub playback_s: f64,
+    /// Size of the GIF, bytes.
     pub bytes: u64,
     /// The trace's rows are every `every` steps.
     pub every: u64,

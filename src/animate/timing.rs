@@ -9,7 +9,9 @@ pub struct Options {
     pub fps: f64,
     /// Trace seconds per second of playback (default: `default_speed`).
     pub speed: Option<f64>,
+    /// Width of the picture, pixels.
     pub width: u32,
+    /// Height of the picture, pixels.
     pub height: u32,
 }
 

@@ -83,8 +83,11 @@ pub(crate) fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
 
 /// A series of one panel: its legend label, colour and points.
 pub(crate) struct Line {
+    /// The legend's entry.
     pub(crate) label: String,
+    /// The line's colour.
     pub(crate) colour: RGBColor,
+    /// Its points, (x, y).
     pub(crate) points: Vec<(f64, f64)>,
 }
 

@@ -23,8 +23,11 @@ pub const MAX_TIMES: usize = 4000;
 /// What `view` wrote.
 #[derive(Debug, Clone, Copy)]
 pub struct Written {
+    /// Times the page holds.
     pub times: usize,
+    /// Rows of the trace.
     pub rows: usize,
+    /// Size of the page, bytes.
     pub bytes: u64,
     /// The trace's rows are every `every` steps.
     pub every: u64,
