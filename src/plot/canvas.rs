@@ -83,8 +83,11 @@ pub(crate) fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
 
 /// A series of one panel: its legend label, colour and points.
 pub(crate) struct Line {
+    /// The legend's entry.
     pub(crate) label: String,
+    /// The line's colour.
     pub(crate) colour: RGBColor,
+    /// Its points, (x, y).
     pub(crate) points: Vec<(f64, f64)>,
 }
 
@@ -176,7 +179,8 @@ pub(crate) fn line_panel(
 }
 
 /// A 2D chart of a picture.
-type Chart2d<'a, 'b> = ChartContext<
+/// A chart of two axes of numbers on a bitmap.
+pub(crate) type Chart2d<'a, 'b> = ChartContext<
     'a,
     BitMapBackend<'b>,
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,

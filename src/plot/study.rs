@@ -1,7 +1,7 @@
 //! The picture of `touchdown study`: the allowable slope of each azimuth sector against the
 //! varied value, with its 95 % intervals, and the static tipping limit beside it.
 
-use super::canvas::{Area, FONT, SERIES_COLOURS, drawing, legend, save_png, span};
+use super::canvas::{Area, Chart2d, FONT, SERIES_COLOURS, drawing, legend, save_png, span};
 use crate::stats::{Allowable, SECTOR_DEG, SECTORS};
 use crate::study::{About, Row};
 use plotters::prelude::*;
@@ -12,6 +12,7 @@ pub(crate) fn study_chart(out: &Path, rows: &[Row], about: &About<'_>) -> anyhow
     save_png(out, (1100, 700), |root| draw(root, rows, about))
 }
 
+/// The chart of `rows` on `root`.
 fn draw(root: &Area<'_>, rows: &[Row], about: &About<'_>) -> anyhow::Result<()> {
     let x = span(rows.iter().map(|r| r.value), 0.06);
     let least: Vec<(f64, f64)> = rows
@@ -56,6 +57,14 @@ fn draw(root: &Area<'_>, rows: &[Row], about: &About<'_>) -> anyhow::Result<()> 
         .light_line_style(RGBColor(238, 238, 238))
         .draw()
         .map_err(drawing)?;
+    sectors(&mut chart, rows)?;
+    limits(&mut chart, rows, &least, &greatest)?;
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)
+}
+
+/// The allowable slope of each sector against the value, with its 95 % interval as a
+/// whisker (neighbouring sectors' whiskers side by side).
+fn sectors(chart: &mut Chart2d<'_, '_>, rows: &[Row]) -> anyhow::Result<()> {
     let width = span(rows.iter().map(|r| r.value), 0.0);
     // Whiskers of neighbouring sectors side by side, a little apart.
     let step = 0.006 * (width.end - width.start);
@@ -93,6 +102,17 @@ fn draw(root: &Area<'_>, rows: &[Row], about: &About<'_>) -> anyhow::Result<()> 
                 PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
             });
     }
+    Ok(())
+}
+
+/// A cross at 0 where a sector has no allowable slope, and the static limit's least and
+/// greatest over azimuth, dashed.
+fn limits(
+    chart: &mut Chart2d<'_, '_>,
+    rows: &[Row],
+    least: &[(f64, f64)],
+    greatest: &[(f64, f64)],
+) -> anyhow::Result<()> {
     // A sector without an allowable slope at a value: a cross at 0.
     let none: Vec<(f64, f64)> = rows
         .iter()
@@ -115,12 +135,8 @@ fn draw(root: &Area<'_>, rows: &[Row], about: &About<'_>) -> anyhow::Result<()> 
             .legend(move |(x, y)| Cross::new((x + 9, y), 5, black.stroke_width(2)));
     }
     for (line, label, colour) in [
-        (
-            &least,
-            "static limit, least over azimuth",
-            RGBColor(0, 0, 0),
-        ),
-        (&greatest, "static limit, greatest", RGBColor(120, 120, 120)),
+        (least, "static limit, least over azimuth", RGBColor(0, 0, 0)),
+        (greatest, "static limit, greatest", RGBColor(120, 120, 120)),
     ] {
         if line.is_empty() {
             continue;
@@ -138,5 +154,5 @@ fn draw(root: &Area<'_>, rows: &[Row], about: &About<'_>) -> anyhow::Result<()> 
                 PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
             });
     }
-    legend(&mut chart, SeriesLabelPosition::UpperLeft)
+    Ok(())
 }

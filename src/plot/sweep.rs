@@ -1,7 +1,7 @@
 //! Pictures of a sweep file: the stability map, the tipped share per slope bin, and the
 //! distributions of peak CG acceleration and damper stroke.
 
-use super::canvas::{Area, FONT, OUTCOME_COLOURS, drawing, legend, save_png, span};
+use super::canvas::{Area, Chart2d, FONT, OUTCOME_COLOURS, drawing, legend, save_png, span};
 use crate::output::columns::Table;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
@@ -155,6 +155,24 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
         .light_line_style(RGBColor(238, 238, 238))
         .draw()
         .map_err(drawing)?;
+    outcome_dots(&mut chart, s)?;
+    allowable_per_sector(&mut chart, s)?;
+    if !limit.is_empty() {
+        chart
+            .draw_series(LineSeries::new(
+                limit.iter().copied(),
+                BLACK.stroke_width(3),
+            ))
+            .map_err(drawing)?
+            .label("static tipping limit atan(r/h)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(3)));
+    }
+    legend(&mut chart, SeriesLabelPosition::UpperRight)
+}
+
+/// A dot per sample in the colour of its outcome, the commonest outcome first, and a
+/// legend entry per outcome present with its count.
+fn outcome_dots(chart: &mut Chart2d<'_, '_>, s: &Sweep) -> anyhow::Result<()> {
     // Bigger dots for fewer samples; single pixels when they would cover the map anyway.
     let radius = match s.slope.len() {
         0..=2_000 => 3,
@@ -200,6 +218,11 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
             .label(format!("{} ({n})", outcome.name()))
             .legend(move |(x, y)| Circle::new((x + 8, y), 5, c.filled()));
     }
+    Ok(())
+}
+
+/// The allowable slope of each azimuth sector (as `touchdown report` finds it), dashed.
+fn allowable_per_sector(chart: &mut Chart2d<'_, '_>, s: &Sweep) -> anyhow::Result<()> {
     // The allowable slope of each sector, as `touchdown report` finds it.
     let purple = RGBColor(110, 0, 150);
     let mut per_sector: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
@@ -230,17 +253,7 @@ fn stability_map(root: &Area<'_>, s: &Sweep, limit: &[(f64, f64)]) -> anyhow::Re
                 PathElement::new(vec![(x, y), (x + 18, y)], purple.stroke_width(4))
             });
     }
-    if !limit.is_empty() {
-        chart
-            .draw_series(LineSeries::new(
-                limit.iter().copied(),
-                BLACK.stroke_width(3),
-            ))
-            .map_err(drawing)?
-            .label("static tipping limit atan(r/h)")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(3)));
-    }
-    legend(&mut chart, SeriesLabelPosition::UpperRight)
+    Ok(())
 }
 
 /// A round bin width near `span / 18`: 1, 2, 2.5 or 5 times a power of ten.

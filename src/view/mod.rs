@@ -23,8 +23,11 @@ pub const MAX_TIMES: usize = 4000;
 /// What `view` wrote.
 #[derive(Debug, Clone, Copy)]
 pub struct Written {
+    /// Times the page holds.
     pub times: usize,
+    /// Rows of the trace.
     pub rows: usize,
+    /// Size of the page, bytes.
     pub bytes: u64,
     /// The trace's rows are every `every` steps.
     pub every: u64,
@@ -43,9 +46,9 @@ pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
     file.commit(sink)?;
     Ok(Written {
         times,
-        rows: scene.time.len(),
+        rows: scene.trace.time.len(),
         bytes: page.len() as u64,
-        every: scene.every,
+        every: scene.trace.every,
     })
 }
 
@@ -99,44 +102,57 @@ fn numbers(out: &mut String, values: impl IntoIterator<Item = f64>) {
 /// The trace as the page reads it (its keys are the page's contract); returns it and the
 /// number of times it holds.
 fn trace_json(scene: &Scene) -> (String, usize) {
-    let (t0, t1) = scene.span_s();
+    let (t0, t1) = scene.trace.span_s();
     // Every row of a short trace; a long one at MAX_TIMES evenly spaced times.
-    let times: Vec<f64> = if scene.time.len() <= MAX_TIMES {
-        scene.time.clone()
+    let times: Vec<f64> = if scene.trace.time.len() <= MAX_TIMES {
+        scene.trace.time.clone()
     } else {
         (0..MAX_TIMES)
             .map(|k| t0 + (t1 - t0) * k as f64 / (MAX_TIMES - 1) as f64)
             .collect()
     };
-    let resampled = scene.time.len() > MAX_TIMES;
-    let sk = &scene.sketch;
+    let resampled = scene.trace.time.len() > MAX_TIMES;
     let mut o = String::with_capacity(times.len() * 64 * 10);
     o.push('{');
     o.push_str("\"title\":");
-    text(&mut o, &scene.about);
+    text(&mut o, &scene.trace.about);
     o.push_str(",\"outcome\":");
-    text(&mut o, &scene.outcome);
+    text(&mut o, &scene.trace.outcome);
     o.push_str(",\"decided_s\":");
-    num(&mut o, scene.decided_s);
+    num(&mut o, scene.trace.decided_s);
     o.push_str(",\"slope_deg\":");
-    num(&mut o, scene.slope_deg);
+    num(&mut o, scene.trace.slope_deg());
     o.push_str(",\"downhill_azimuth_deg\":");
-    num(&mut o, scene.downhill_azimuth_deg);
+    num(&mut o, scene.trace.downhill_azimuth_deg());
     o.push_str(",\"normal\":");
     vec3(&mut o, scene.surface.normal);
+    sketch_and_ground(&mut o, scene);
+    o.push_str("},\"time\":");
+    numbers(&mut o, times.iter().copied());
+
+    series(&mut o, scene, &times, resampled);
+    charts(&mut o, scene);
+    o.push_str("]}");
+    (o, times.len())
+}
+
+/// The lander's sketch (body, legs, footpads, thrusters) and the ground patch under its
+/// path, as the page's keys `body` to `ground`.
+fn sketch_and_ground(o: &mut String, scene: &Scene) {
+    let sk = &scene.sketch;
     o.push_str(",\"body\":{\"bottom\":[");
     for (k, p) in sk.bottom.iter().enumerate() {
         if k > 0 {
             o.push(',');
         }
-        vec3(&mut o, *p);
+        vec3(o, *p);
     }
     o.push_str("],\"top\":[");
     for (k, p) in sk.top.iter().enumerate() {
         if k > 0 {
             o.push(',');
         }
-        vec3(&mut o, *p);
+        vec3(o, *p);
     }
     o.push_str("]},\"legs\":[");
     for (k, l) in sk.legs.iter().enumerate() {
@@ -144,28 +160,28 @@ fn trace_json(scene: &Scene) -> (String, usize) {
             o.push(',');
         }
         o.push_str("{\"hip\":");
-        vec3(&mut o, l.hip);
+        vec3(o, l.hip);
         o.push_str(",\"mount\":");
-        vec3(&mut o, l.mount);
+        vec3(o, l.mount);
         o.push_str(",\"tip0\":");
-        vec3(&mut o, l.tip0);
+        vec3(o, l.tip0);
         o.push_str(",\"axis\":");
-        vec3(&mut o, l.axis);
+        vec3(o, l.axis);
         o.push('}');
     }
     o.push_str("],\"footpad_radius_m\":");
-    num(&mut o, sk.footpad_radius_m);
+    num(o, sk.footpad_radius_m);
     o.push_str(",\"thrusters\":[");
     for (j, t) in sk.thrusters.iter().enumerate() {
         if j > 0 {
             o.push(',');
         }
         o.push_str("{\"position\":");
-        vec3(&mut o, t.position);
+        vec3(o, t.position);
         o.push_str(",\"direction\":");
-        vec3(&mut o, t.direction);
+        vec3(o, t.direction);
         o.push_str(",\"max_thrust_n\":");
-        num(&mut o, t.max_thrust_n);
+        num(o, t.max_thrust_n);
         o.push('}');
     }
     let g = scene.ground(2.0 * sk.reach_m() + 1.0, 0.1, 40_000);
@@ -175,21 +191,23 @@ fn trace_json(scene: &Scene) -> (String, usize) {
         g
     };
     o.push_str("],\"ground\":{\"origin\":");
-    vec3(&mut o, g.origin);
+    vec3(o, g.origin);
     o.push_str(",\"u\":");
-    vec3(&mut o, g.u);
+    vec3(o, g.u);
     o.push_str(",\"v\":");
-    vec3(&mut o, g.v);
+    vec3(o, g.v);
     o.push_str(",\"spacing_m\":");
-    num(&mut o, g.spacing_m);
+    num(o, g.spacing_m);
     let _ = write!(o, ",\"nu\":{},\"nv\":{},\"heights\":", g.nu, g.nv);
     match &g.heights {
-        Some(h) => numbers(&mut o, h.iter().copied()),
+        Some(h) => numbers(o, h.iter().copied()),
         None => o.push_str("null"),
     }
-    o.push_str("},\"time\":");
-    numbers(&mut o, times.iter().copied());
+}
 
+/// The state columns between rows and the forces and thrusts at their peak, at `times`
+/// (`resampled`: the peaks since the previous time), the tilt and the phases.
+fn series(o: &mut String, scene: &Scene, times: &[f64], resampled: bool) {
     // The state columns between rows; the forces and thrusts at their peak since the
     // previous time (when resampled).
     let mut state: Vec<String> = [
@@ -198,7 +216,7 @@ fn trace_json(scene: &Scene) -> (String, usize) {
     .map(String::from)
     .to_vec();
     let mut peaks: Vec<String> = Vec::new();
-    for k in 0..scene.legs {
+    for k in 0..scene.trace.legs {
         for c in ["tip_x_m", "tip_y_m", "tip_z_m", "stroke_m", "penetration_m"] {
             state.push(format!("leg{k}_{c}"));
         }
@@ -206,7 +224,7 @@ fn trace_json(scene: &Scene) -> (String, usize) {
             peaks.push(format!("leg{k}_{c}"));
         }
     }
-    for j in 0..scene.thrusters {
+    for j in 0..scene.trace.thrusters {
         peaks.push(format!("thruster{j}_thrust_n"));
     }
     o.push_str(",\"series\":{");
@@ -220,37 +238,39 @@ fn trace_json(scene: &Scene) -> (String, usize) {
         o.push(':');
     };
     for name in &state {
-        key(&mut o, name);
-        numbers(&mut o, times.iter().map(|t| scene.value(name, *t)));
+        key(o, name);
+        numbers(o, times.iter().map(|t| scene.trace.value(name, *t)));
     }
     for name in &peaks {
-        key(&mut o, name);
+        key(o, name);
         numbers(
-            &mut o,
+            o,
             times.iter().enumerate().map(|(k, t)| {
                 let since = if resampled && k > 0 { times[k - 1] } else { *t };
-                scene.peak_between(name, since, *t)
+                scene.trace.peak_between(name, since, *t)
             }),
         );
     }
-    key(&mut o, "tilt_deg");
-    numbers(&mut o, times.iter().map(|t| scene.pose(*t, *t).tilt_deg));
+    key(o, "tilt_deg");
+    numbers(o, times.iter().map(|t| scene.pose(*t, *t).tilt_deg));
     o.push_str("},\"phase\":");
-    match scene.phases() {
+    match scene.trace.phases() {
         Some(_) => {
             o.push('[');
             for (k, t) in times.iter().enumerate() {
                 if k > 0 {
                     o.push(',');
                 }
-                text(&mut o, scene.pose(*t, *t).phase.as_deref().unwrap_or(""));
+                text(o, scene.pose(*t, *t).phase.as_deref().unwrap_or(""));
             }
             o.push(']');
         }
         None => o.push_str("null"),
     }
+}
 
-    // The charts under the view.
+/// The charts under the view.
+fn charts(o: &mut String, scene: &Scene) {
     o.push_str(",\"charts\":[");
     let chart = |o: &mut String, title: &str, lines: &[(String, String, f64)]| {
         o.push_str("{\"title\":");
@@ -271,7 +291,7 @@ fn trace_json(scene: &Scene) -> (String, usize) {
         o.push_str("]}");
     };
     let per_leg = |c: &str, scale: f64| -> Vec<(String, String, f64)> {
-        (0..scene.legs)
+        (0..scene.trace.legs)
             .map(|k| (format!("leg {k}"), format!("leg{k}_{c}"), scale))
             .collect()
     };
@@ -281,30 +301,30 @@ fn trace_json(scene: &Scene) -> (String, usize) {
             .map(|a| (a.to_string(), format!("{prefix}{a}{suffix}"), 1.0))
             .collect()
     };
-    chart(&mut o, "CG position (m)", &xyz("", "_m"));
+    chart(o, "CG position (m)", &xyz("", "_m"));
     o.push(',');
-    chart(&mut o, "CG velocity (m/s)", &xyz("v", "_m_s"));
+    chart(o, "CG velocity (m/s)", &xyz("v", "_m_s"));
     o.push(',');
     chart(
-        &mut o,
+        o,
         "tilt from the slope normal (deg)",
         &[("tilt".to_string(), "tilt_deg".to_string(), 1.0)],
     );
     o.push(',');
     chart(
-        &mut o,
+        o,
         "normal force per leg (N)",
         &per_leg("normal_force_n", 1.0),
     );
     o.push(',');
     chart(
-        &mut o,
+        o,
         "damper stroke per leg (mm)",
         &per_leg("stroke_m", 1000.0),
     );
-    if scene.thrusters > 0 {
+    if scene.trace.thrusters > 0 {
         o.push(',');
-        let lines: Vec<(String, String, f64)> = (0..scene.thrusters)
+        let lines: Vec<(String, String, f64)> = (0..scene.trace.thrusters)
             .map(|j| {
                 (
                     format!("thruster {j}"),
@@ -313,8 +333,6 @@ fn trace_json(scene: &Scene) -> (String, usize) {
                 )
             })
             .collect();
-        chart(&mut o, "thrust per thruster (N)", &lines);
+        chart(o, "thrust per thruster (N)", &lines);
     }
-    o.push_str("]}");
-    (o, times.len())
 }
