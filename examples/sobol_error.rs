@@ -1,13 +1,13 @@
-// The gain of the quasi-random design: the error of P(stable) against the sample count,
-// independent draws against the scrambled Sobol sequence (`design = "sobol-sequence"`), over
-// 20 seeds of each. Both estimates are unbiased (Owen's scrambling makes each Sobol point
-// uniform), so their spread over the seeds is their root-mean-square error.
-//
-//   cargo run --release --example sobol_error [-- SCENARIO.toml [SEEDS [LOG2_MAX]]]
-//
-// Without a scenario it runs the default one. Prints a Markdown table: per sample count
-// (powers of 2, the counts at which the Sobol points are balanced), the mean estimate and
-// the RMS error of each design, and their ratio.
+//! The gain of the quasi-random design: the error of P(stable) against the sample count,
+//! independent draws against the scrambled Sobol sequence (`design = "sobol-sequence"`), over
+//! 20 seeds of each. Both estimates are unbiased (Owen's scrambling makes each Sobol point
+//! uniform), so their spread over the seeds is their root-mean-square error.
+//!
+//!   cargo run --release --example sobol_error [-- SCENARIO.toml [SEEDS [LOG2_MAX]]]
+//!
+//! Without a scenario it runs the default one. Prints a Markdown table: per sample count
+//! (powers of 2, the counts at which the Sobol points are balanced), the mean estimate and
+//! the RMS error of each design, and their ratio.
 use touchdown::reference::{Model, Outcome};
 use touchdown::scenario::{Design, Scenario};
 use touchdown::sweep;

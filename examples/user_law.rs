@@ -1,6 +1,6 @@
-// A control law of your own, run on many touchdowns: this program registers it under a
-// name and then is the `touchdown` command itself, so a scenario can name the law:
-// `cargo run --release --example user_law -- sweep --scenario examples/user-law.toml`.
+//! A control law of your own, run on many touchdowns: this program registers it under a
+//! name and then is the `touchdown` command itself, so a scenario can name the law:
+//! `cargo run --release --example user_law -- sweep --scenario examples/user-law.toml`.
 use glam::DVec3;
 use touchdown::control::{LAW_MEMORY, Law, LawCommand, Sensed, register_law};
 

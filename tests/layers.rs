@@ -153,7 +153,12 @@ fn paths_at(code: &str, mut i: usize, prefix: Vec<String>, out: &mut Vec<Vec<Str
         if id.is_empty() {
             break;
         }
-        path.push(id.to_string());
+        if id == "super" {
+            // `super::super::x`: one folder further up.
+            path.pop();
+        } else {
+            path.push(id.to_string());
+        }
         if code[end..].starts_with("::") {
             i = end + 2;
         } else {

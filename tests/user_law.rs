@@ -15,9 +15,8 @@ use touchdown::sweep;
 
 /// The example's law, `DampThenHold` (its `main` unused here).
 #[allow(dead_code)]
-mod example {
-    include!("../examples/user_law.rs");
-}
+#[path = "../examples/user_law.rs"]
+mod example;
 
 fn scenario_text() -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/user-law.toml"))
