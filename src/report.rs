@@ -3,14 +3,14 @@
 //! lander, the peak loads, and (with thrusters) the propellant and firings. Markdown, so that it reads on a terminal and pastes into a
 //! design note.
 
-use crate::output::read::open_sweep;
+use crate::output::sweep::{SweepBatch, SweepFile};
 use crate::reference::Outcome;
 use crate::stats::{
     ALLOWABLE_STABLE, MIN_SAMPLES, SECTOR_DEG, SECTORS, allowable_slope, quantile,
     relative_azimuth_deg, sector_of, wilson_interval,
 };
 use anyhow::{anyhow, bail};
-use arrow_array::{Array, Float64Array, RecordBatch, StringArray, UInt32Array};
+use arrow_array::{Float64Array, UInt32Array};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -28,9 +28,8 @@ pub fn report(
     path: &Path,
     terrain: Option<(&crate::weighting::SlopeDistribution, &str)>,
 ) -> anyhow::Result<String> {
-    let (schema, batches) = open_sweep(path)?;
-    let meta = schema.metadata();
-    let legs = crate::output::read::leg_count(&schema);
+    let mut file = SweepFile::open(path)?;
+    let legs = file.legs();
     let mut counts = [0u64; Outcome::ALL.len()];
     let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
     let mut loads = [
@@ -62,31 +61,22 @@ pub fn report(
     ];
     let mut thrust = Thrust::default();
     let mut slopes: Vec<(f64, Outcome)> = Vec::new();
-    for b in batches {
-        let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
-        let f = |name: &str| float_column(&b, name, path);
-        let control = ThrustColumns::of(&b, path)?;
-        let outcome = b
-            .column_by_name("outcome")
-            .and_then(|c| c.as_any().downcast_ref::<StringArray>())
-            .ok_or_else(|| anyhow!("{}: no outcome column", path.display()))?;
+    for b in file.batches() {
+        let b = b?;
+        let f = |name: &str| b.f64s(name);
+        let control = ThrustColumns::of(&b)?;
+        let outcomes = b.outcomes()?;
         let (slope, azimuth, yaw) = (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
         let (acc, acc_z) = (
             f("peak_acceleration_m_s2")?,
             f("peak_acceleration_z_body_m_s2")?,
         );
-        let per_leg = |what: &str| -> anyhow::Result<Vec<&Float64Array>> {
-            (0..legs).map(|k| f(&format!("leg{k}_{what}"))).collect()
-        };
         let (force, stroke, energy) = (
-            per_leg("peak_normal_force_n")?,
-            per_leg("stroke_m")?,
-            per_leg("absorbed_j")?,
+            b.per_leg(legs, "peak_normal_force_n")?,
+            b.per_leg(legs, "stroke_m")?,
+            b.per_leg(legs, "absorbed_j")?,
         );
-        for i in 0..b.num_rows() {
-            let name = outcome.value(i);
-            let o = Outcome::from_name(name)
-                .ok_or_else(|| anyhow!("{}: unknown outcome {name:?}", path.display()))?;
+        for (i, &o) in outcomes.iter().enumerate() {
             counts[o as usize] += 1;
             if terrain.is_some() {
                 slopes.push((slope.value(i), o));
@@ -107,6 +97,7 @@ pub fn report(
             }
         }
     }
+    let meta = file.metadata();
     let total: u64 = counts.iter().sum();
     if total == 0 {
         bail!("{} holds no samples", path.display());
@@ -232,19 +223,16 @@ struct ThrustColumns<'a> {
 
 impl<'a> ThrustColumns<'a> {
     /// The columns of `b`, or `None` in a sweep without a control loop (no `propellant_kg`).
-    fn of(b: &'a RecordBatch, path: &Path) -> anyhow::Result<Option<ThrustColumns<'a>>> {
-        if b.column_by_name("propellant_kg").is_none() {
+    fn of(b: &'a SweepBatch<'_>) -> anyhow::Result<Option<ThrustColumns<'a>>> {
+        if !b.has("propellant_kg") {
             return Ok(None);
         }
-        let firings = b
-            .column_by_name("firings")
-            .and_then(|c| c.as_any().downcast_ref::<UInt32Array>())
-            .ok_or_else(|| anyhow!("{}: no UInt32 column firings", path.display()))?;
+        let firings = b.u32s("firings")?;
         Ok(Some(ThrustColumns {
-            propellant_kg: float_column(b, "propellant_kg", path)?,
-            on_time_s: float_column(b, "thrust_on_time_s", path)?,
+            propellant_kg: b.f64s("propellant_kg")?,
+            on_time_s: b.f64s("thrust_on_time_s")?,
             firings,
-            hold_down_impulse_n_s: float_column(b, "hold_down_impulse_n_s", path)?,
+            hold_down_impulse_n_s: b.f64s("hold_down_impulse_n_s")?,
         }))
     }
 }
@@ -313,15 +301,4 @@ impl Thrust {
             }
         }
     }
-}
-
-/// A Float64 column of a batch, by name.
-pub(crate) fn float_column<'a>(
-    b: &'a RecordBatch,
-    name: &str,
-    path: &Path,
-) -> anyhow::Result<&'a Float64Array> {
-    b.column_by_name(name)
-        .and_then(|c| c.as_any().downcast_ref::<Float64Array>())
-        .ok_or_else(|| anyhow!("{}: no Float64 column {name}", path.display()))
 }

@@ -2,7 +2,7 @@
 //! the outcome shares with 95 % intervals, the allowable slope per azimuth sector and the
 //! static tipping limit, read from the value's sweep file; written as Arrow and Markdown.
 
-use crate::output::columns::Table;
+use crate::output::sweep::SweepFile;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
 use crate::stats::{
@@ -147,28 +147,29 @@ impl Row {
     /// The line of the value `value`, whose sweep of `scenario` with `samples` samples is
     /// the file `path`.
     pub fn read(value: f64, path: &Path, scenario: &Scenario, samples: u64) -> anyhow::Result<Row> {
-        let t = Table::read(path, |n| {
-            matches!(n, "slope_deg" | "downhill_azimuth_deg" | "yaw_deg")
-        })?;
-        if t.rows as u64 != samples {
-            bail!(
-                "{} holds {} samples, not the {samples} of the study",
-                path.display(),
-                t.rows
-            );
-        }
-        let (slope, azimuth, yaw) = (
-            t.column("slope_deg", path)?,
-            t.column("downhill_azimuth_deg", path)?,
-            t.column("yaw_deg", path)?,
-        );
+        let mut file = SweepFile::open(path)?;
         let mut counts = [0u64; Outcome::ALL.len()];
         let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
-        for i in 0..t.rows {
-            let o = t.outcome[i];
-            counts[usize::from(o)] += 1;
-            let relative = relative_azimuth_deg(azimuth[i], yaw[i]);
-            sectors[sector_of(relative)].push((slope[i], o == Outcome::Stable as u8));
+        let mut rows = 0;
+        for b in file.batches() {
+            let b = b?;
+            let (slope, azimuth, yaw) = (
+                b.f64s("slope_deg")?,
+                b.f64s("downhill_azimuth_deg")?,
+                b.f64s("yaw_deg")?,
+            );
+            for (i, o) in b.outcomes()?.into_iter().enumerate() {
+                counts[o as usize] += 1;
+                let relative = relative_azimuth_deg(azimuth.value(i), yaw.value(i));
+                sectors[sector_of(relative)].push((slope.value(i), o == Outcome::Stable));
+            }
+            rows += b.rows();
+        }
+        if rows as u64 != samples {
+            bail!(
+                "{} holds {rows} samples, not the {samples} of the study",
+                path.display()
+            );
         }
         let allowable: [Allowable; SECTORS] =
             std::array::from_fn(|k| allowable_slope(&mut sectors[k]));

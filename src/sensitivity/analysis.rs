@@ -2,6 +2,8 @@
 //! points of the design, the four outputs of each, and their indices.
 
 use super::estimate::{Indices, Outputs, indices};
+use crate::output::sweep::SweepFile;
+use crate::reference::Outcome;
 
 /// The outputs whose indices `touchdown sensitivity` gives.
 pub const OUTPUTS: [&str; 4] = [
@@ -32,10 +34,9 @@ pub struct Analysis {
 pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analysis> {
     use crate::scenario::{Design, Scenario};
     use anyhow::{anyhow, bail};
-    use arrow_array::{Array as _, StringArray, UInt64Array};
 
-    let (schema, batches) = crate::output::read::open_sweep(path)?;
-    let meta = schema.metadata();
+    let mut file = SweepFile::open(path)?;
+    let meta = file.metadata();
     let text = meta
         .get("touchdown.scenario")
         .ok_or_else(|| anyhow!("{}: no touchdown.scenario in its metadata", path.display()))?;
@@ -56,35 +57,26 @@ pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analy
     }
     let varied = crate::scenario::design_inputs(&scenario);
     let d = varied.len();
-    let legs = crate::output::read::leg_count(&schema);
+    let legs = file.legs();
     // Per base point, the four outputs of its d + 2 rows (NaN until seen).
     let mut blocks: std::collections::BTreeMap<u64, Vec<[f64; 4]>> = Default::default();
     let mut rows = 0u64;
-    for b in batches {
-        let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
-        let sample = b
-            .column_by_name("sample")
-            .and_then(|c| c.as_any().downcast_ref::<UInt64Array>())
-            .ok_or_else(|| anyhow!("{}: no sample column", path.display()))?;
-        let outcome = b
-            .column_by_name("outcome")
-            .and_then(|c| c.as_any().downcast_ref::<StringArray>())
-            .ok_or_else(|| anyhow!("{}: no outcome column", path.display()))?;
-        let acc = crate::report::float_column(&b, "peak_acceleration_m_s2", path)?;
-        let strokes = (0..legs)
-            .map(|k| crate::report::float_column(&b, &format!("leg{k}_stroke_m"), path))
-            .collect::<anyhow::Result<Vec<_>>>()?;
-        for i in 0..b.num_rows() {
+    for b in file.batches() {
+        let b = b?;
+        let sample = b.u64s("sample")?;
+        let outcomes = b.outcomes()?;
+        let acc = b.f64s("peak_acceleration_m_s2")?;
+        let strokes = b.per_leg(legs, "stroke_m")?;
+        for (i, &o) in outcomes.iter().enumerate() {
             rows += 1;
             let (base, matrix) = crate::scenario::design_position(sample.value(i), d);
-            let o = outcome.value(i);
             let stroke = strokes.iter().map(|c| c.value(i)).fold(0.0, f64::max);
             let block = blocks
                 .entry(base)
                 .or_insert_with(|| vec![[f64::NAN; 4]; d + 2]);
             block[matrix] = [
-                f64::from(u8::from(o == "stable")),
-                f64::from(u8::from(o == "tipped")),
+                f64::from(u8::from(o == Outcome::Stable)),
+                f64::from(u8::from(o == Outcome::Tipped)),
                 acc.value(i),
                 1e3 * stroke,
             ];

@@ -4,13 +4,16 @@
 //!
 //! The folder: `schema` (the columns, their units and the provenance in the metadata),
 //! `batch` (rows as a record batch), `writer` (the file written as rows come, and a
-//! rebatcher for files made of other files).
+//! rebatcher for files made of other files), `read` (the one reader of sweep files: its
+//! metadata, legs, typed columns and outcomes).
 
 mod batch;
+mod read;
 mod schema;
 mod writer;
 
 pub use batch::batch;
+pub use read::{SweepBatch, SweepFile, leg_count};
 pub use schema::{
     CONTROL_COLUMNS, SHARD_KEYS, SweepInfo, control_columns, parameter_columns, schema,
 };
