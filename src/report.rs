@@ -21,6 +21,101 @@ struct Load {
     values: Vec<f64>,
 }
 
+/// What the report gathers from the rows of a sweep file.
+struct Gathered {
+    /// Samples per outcome, in the order of `Outcome::ALL`.
+    counts: [u64; Outcome::ALL.len()],
+    /// Per sector of downhill azimuth relative to the lander: each sample's slope and
+    /// whether it stood.
+    sectors: Vec<Vec<(f64, bool)>>,
+    loads: [Load; 5],
+    thrust: Thrust,
+    /// Each sample's slope and outcome, where the report weighs them onto a terrain.
+    slopes: Vec<(f64, Outcome)>,
+}
+
+impl Gathered {
+    /// The rows of `file`, gathered; each sample's slope and outcome kept if `keep_slopes`.
+    fn read(file: &mut SweepFile, keep_slopes: bool) -> anyhow::Result<Gathered> {
+        let legs = file.legs();
+        let mut counts = [0u64; Outcome::ALL.len()];
+        let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
+        let mut loads = [
+            Load {
+                name: "peak CG acceleration",
+                unit: "m/s^2",
+                values: Vec::new(),
+            },
+            Load {
+                name: "peak acceleration along Z_B",
+                unit: "m/s^2",
+                values: Vec::new(),
+            },
+            Load {
+                name: "peak leg normal force (largest leg)",
+                unit: "N",
+                values: Vec::new(),
+            },
+            Load {
+                name: "damper stroke (longest leg)",
+                unit: "mm",
+                values: Vec::new(),
+            },
+            Load {
+                name: "energy absorbed by the dampers (all legs)",
+                unit: "J",
+                values: Vec::new(),
+            },
+        ];
+        let mut thrust = Thrust::default();
+        let mut slopes: Vec<(f64, Outcome)> = Vec::new();
+        for b in file.batches() {
+            let b = b?;
+            let f = |name: &str| b.f64s(name);
+            let control = ThrustColumns::of(&b)?;
+            let outcomes = b.outcomes()?;
+            let (slope, azimuth, yaw) =
+                (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
+            let (acc, acc_z) = (
+                f("peak_acceleration_m_s2")?,
+                f("peak_acceleration_z_body_m_s2")?,
+            );
+            let (force, stroke, energy) = (
+                b.per_leg(legs, "peak_normal_force_n")?,
+                b.per_leg(legs, "stroke_m")?,
+                b.per_leg(legs, "absorbed_j")?,
+            );
+            for (i, &o) in outcomes.iter().enumerate() {
+                counts[o as usize] += 1;
+                if keep_slopes {
+                    slopes.push((slope.value(i), o));
+                }
+                let relative = relative_azimuth_deg(azimuth.value(i), yaw.value(i));
+                sectors[sector_of(relative)].push((slope.value(i), o == Outcome::Stable));
+                let max_of =
+                    |cols: &[&Float64Array]| cols.iter().map(|c| c.value(i)).fold(0.0, f64::max);
+                loads[0].values.push(acc.value(i));
+                loads[1].values.push(acc_z.value(i));
+                loads[2].values.push(max_of(&force));
+                loads[3].values.push(1e3 * max_of(&stroke));
+                loads[4]
+                    .values
+                    .push(energy.iter().map(|c| c.value(i)).sum());
+                if let Some(c) = &control {
+                    thrust.push(c, i, o);
+                }
+            }
+        }
+        Ok(Gathered {
+            counts,
+            sectors,
+            loads,
+            thrust,
+            slopes,
+        })
+    }
+}
+
 /// The report of the sweep file at `path`, as Markdown.
 /// With `terrain` (a `--slope-distribution` and its text), the outcome shares on that
 /// terrain follow the sweep's own (`weighting`).
@@ -29,74 +124,13 @@ pub fn report(
     terrain: Option<(&crate::weighting::SlopeDistribution, &str)>,
 ) -> anyhow::Result<String> {
     let mut file = SweepFile::open(path)?;
-    let legs = file.legs();
-    let mut counts = [0u64; Outcome::ALL.len()];
-    let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
-    let mut loads = [
-        Load {
-            name: "peak CG acceleration",
-            unit: "m/s^2",
-            values: Vec::new(),
-        },
-        Load {
-            name: "peak acceleration along Z_B",
-            unit: "m/s^2",
-            values: Vec::new(),
-        },
-        Load {
-            name: "peak leg normal force (largest leg)",
-            unit: "N",
-            values: Vec::new(),
-        },
-        Load {
-            name: "damper stroke (longest leg)",
-            unit: "mm",
-            values: Vec::new(),
-        },
-        Load {
-            name: "energy absorbed by the dampers (all legs)",
-            unit: "J",
-            values: Vec::new(),
-        },
-    ];
-    let mut thrust = Thrust::default();
-    let mut slopes: Vec<(f64, Outcome)> = Vec::new();
-    for b in file.batches() {
-        let b = b?;
-        let f = |name: &str| b.f64s(name);
-        let control = ThrustColumns::of(&b)?;
-        let outcomes = b.outcomes()?;
-        let (slope, azimuth, yaw) = (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
-        let (acc, acc_z) = (
-            f("peak_acceleration_m_s2")?,
-            f("peak_acceleration_z_body_m_s2")?,
-        );
-        let (force, stroke, energy) = (
-            b.per_leg(legs, "peak_normal_force_n")?,
-            b.per_leg(legs, "stroke_m")?,
-            b.per_leg(legs, "absorbed_j")?,
-        );
-        for (i, &o) in outcomes.iter().enumerate() {
-            counts[o as usize] += 1;
-            if terrain.is_some() {
-                slopes.push((slope.value(i), o));
-            }
-            let relative = relative_azimuth_deg(azimuth.value(i), yaw.value(i));
-            sectors[sector_of(relative)].push((slope.value(i), o == Outcome::Stable));
-            let max_of =
-                |cols: &[&Float64Array]| cols.iter().map(|c| c.value(i)).fold(0.0, f64::max);
-            loads[0].values.push(acc.value(i));
-            loads[1].values.push(acc_z.value(i));
-            loads[2].values.push(max_of(&force));
-            loads[3].values.push(1e3 * max_of(&stroke));
-            loads[4]
-                .values
-                .push(energy.iter().map(|c| c.value(i)).sum());
-            if let Some(c) = &control {
-                thrust.push(c, i, o);
-            }
-        }
-    }
+    let Gathered {
+        counts,
+        mut sectors,
+        mut loads,
+        mut thrust,
+        slopes,
+    } = Gathered::read(&mut file, terrain.is_some())?;
     let meta = file.metadata();
     let total: u64 = counts.iter().sum();
     if total == 0 {
@@ -104,6 +138,25 @@ pub fn report(
     }
 
     let mut t = String::new();
+    write_outcomes(&mut t, path, meta, &counts, total);
+    if let Some((terrain, text)) = terrain {
+        write_terrain(&mut t, path, meta, &slopes, terrain, text)?;
+    }
+    write_allowable(&mut t, &mut sectors);
+    write_loads(&mut t, &mut loads);
+    thrust.write(&mut t);
+    write_end(&mut t, path, meta);
+    Ok(t)
+}
+
+/// The title, the samples and the outcome shares with their intervals.
+fn write_outcomes(
+    t: &mut String,
+    path: &Path,
+    meta: &arrow_schema::Metadata,
+    counts: &[u64; Outcome::ALL.len()],
+    total: u64,
+) {
     let _ = writeln!(t, "# touchdown report: {}\n", path.display());
     let _ = writeln!(
         t,
@@ -116,7 +169,7 @@ pub fn report(
         t,
         "| outcome | samples | share | 95 % interval |\n|---|---:|---:|---:|"
     );
-    for (name, k) in Outcome::ALL.iter().map(|o| o.name()).zip(&counts) {
+    for (name, k) in Outcome::ALL.iter().map(|o| o.name()).zip(counts) {
         let (lo, hi) = wilson_interval(*k, total);
         let _ = writeln!(
             t,
@@ -126,29 +179,43 @@ pub fn report(
             100.0 * hi
         );
     }
-    if let Some((terrain, text)) = terrain {
-        if meta.contains_key(crate::scenario::METADATA_KEYS[1]) {
-            anyhow::bail!(
-                "--slope-distribution: {} cannot be weighed onto a terrain: its slopes come \
-                 from a table of inputs, not from a distribution",
-                path.display()
-            );
-        }
-        let scenario = meta
-            .get("touchdown.scenario")
-            .ok_or_else(|| anyhow!("{}: no touchdown.scenario in its metadata", path.display()))
-            .and_then(|text| {
-                crate::scenario::Scenario::from_toml(text)
-                    .map_err(|e| anyhow!("the scenario stored in {}: {e}", path.display()))
-            })?;
-        let w = crate::weighting::weigh(&scenario, &slopes, terrain).map_err(|e| {
-            anyhow!(
-                "--slope-distribution: {} cannot be weighed onto this terrain: {e}",
-                path.display()
-            )
-        })?;
-        let _ = write!(t, "\n{}", crate::weighting::markdown(&w, terrain, text));
+}
+
+/// The outcome shares weighed onto the terrain of a `--slope-distribution`.
+fn write_terrain(
+    t: &mut String,
+    path: &Path,
+    meta: &arrow_schema::Metadata,
+    slopes: &[(f64, Outcome)],
+    terrain: &crate::weighting::SlopeDistribution,
+    text: &str,
+) -> anyhow::Result<()> {
+    if meta.contains_key(crate::scenario::METADATA_KEYS[1]) {
+        anyhow::bail!(
+            "--slope-distribution: {} cannot be weighed onto a terrain: its slopes come \
+             from a table of inputs, not from a distribution",
+            path.display()
+        );
     }
+    let scenario = meta
+        .get("touchdown.scenario")
+        .ok_or_else(|| anyhow!("{}: no touchdown.scenario in its metadata", path.display()))
+        .and_then(|text| {
+            crate::scenario::Scenario::from_toml(text)
+                .map_err(|e| anyhow!("the scenario stored in {}: {e}", path.display()))
+        })?;
+    let w = crate::weighting::weigh(&scenario, slopes, terrain).map_err(|e| {
+        anyhow!(
+            "--slope-distribution: {} cannot be weighed onto this terrain: {e}",
+            path.display()
+        )
+    })?;
+    let _ = write!(t, "\n{}", crate::weighting::markdown(&w, terrain, text));
+    Ok(())
+}
+
+/// The allowable slope per sector of relative azimuth.
+fn write_allowable(t: &mut String, sectors: &mut [Vec<(f64, bool)>]) {
     let _ = writeln!(
         t,
         "\n## Allowable slope\n\nThe largest slope at or below which at least {stable:.0} % of \
@@ -177,11 +244,15 @@ pub fn report(
             allowable.interval_cell()
         );
     }
+}
+
+/// The peak loads: mean, 99th percentile and largest.
+fn write_loads(t: &mut String, loads: &mut [Load]) {
     let _ = writeln!(
         t,
         "\n## Peak loads\n\n| quantity | mean | 99th percentile | largest |\n|---|---:|---:|---:|"
     );
-    for l in &mut loads {
+    for l in loads {
         let mean = l.values.iter().sum::<f64>() / l.values.len().max(1) as f64;
         let p99 = quantile(&mut l.values, 0.99);
         let max = l.values.last().copied().unwrap_or(0.0);
@@ -191,7 +262,10 @@ pub fn report(
             l.name, l.unit
         );
     }
-    thrust.write(&mut t);
+}
+
+/// The note on dampers that are off, and how to see one sample in detail.
+fn write_end(t: &mut String, path: &Path, meta: &arrow_schema::Metadata) {
     let dampers_off = meta
         .get("touchdown.scenario")
         .and_then(|text| crate::scenario::Scenario::from_toml(text).ok())
@@ -210,7 +284,6 @@ pub fn report(
          its time history; `touchdown plot` draws it.",
         path.display()
     );
-    Ok(t)
 }
 
 /// The columns of what the thrusters did, in a batch of a sweep with a control loop.
