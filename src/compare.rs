@@ -4,11 +4,10 @@
 //! difference in outcome shares comes from the samples that changed, not from the noise of
 //! two independent sweeps.
 
-use crate::output::read::open_sweep;
+use crate::output::sweep::SweepFile;
 use crate::reference::Outcome;
 use crate::stats::Z95;
 use anyhow::{anyhow, bail};
-use arrow_array::{Array, StringArray, UInt64Array};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -22,8 +21,8 @@ struct Outcomes {
 }
 
 fn read(path: &Path) -> anyhow::Result<Outcomes> {
-    let (schema, batches) = open_sweep(path)?;
-    let meta = schema.metadata();
+    let mut file = SweepFile::open(path)?;
+    let meta = file.metadata();
     let seed = meta
         .get("touchdown.seed")
         .cloned()
@@ -33,24 +32,10 @@ fn read(path: &Path) -> anyhow::Result<Outcomes> {
         .cloned()
         .ok_or_else(|| anyhow!("{}: no touchdown.engine", path.display()))?;
     let mut rows = Vec::new();
-    for b in batches {
-        let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
-        let column = |name: &str| {
-            b.column_by_name(name)
-                .ok_or_else(|| anyhow!("{}: no column {name}", path.display()))
-        };
-        let sample = column("sample")?
-            .as_any()
-            .downcast_ref::<UInt64Array>()
-            .ok_or_else(|| anyhow!("{}: sample is not UInt64", path.display()))?;
-        let outcome = column("outcome")?
-            .as_any()
-            .downcast_ref::<StringArray>()
-            .ok_or_else(|| anyhow!("{}: outcome is not text", path.display()))?;
-        for i in 0..b.num_rows() {
-            let o = Outcome::from_name(outcome.value(i)).ok_or_else(|| {
-                anyhow!("{}: unknown outcome {:?}", path.display(), outcome.value(i))
-            })?;
+    for b in file.batches() {
+        let b = b?;
+        let sample = b.u64s("sample")?;
+        for (i, o) in b.outcomes()?.into_iter().enumerate() {
             rows.push((sample.value(i), o as u8));
         }
     }

@@ -3,14 +3,14 @@
 //! lander, the peak loads, and (with thrusters) the propellant and firings. Markdown, so that it reads on a terminal and pastes into a
 //! design note.
 
-use crate::output::read::open_sweep;
+use crate::output::sweep::{SweepBatch, SweepFile};
 use crate::reference::Outcome;
 use crate::stats::{
     ALLOWABLE_STABLE, MIN_SAMPLES, SECTOR_DEG, SECTORS, allowable_slope, quantile,
     relative_azimuth_deg, sector_of, wilson_interval,
 };
 use anyhow::{anyhow, bail};
-use arrow_array::{Array, Float64Array, RecordBatch, StringArray, UInt32Array};
+use arrow_array::{Float64Array, UInt32Array};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -21,6 +21,101 @@ struct Load {
     values: Vec<f64>,
 }
 
+/// What the report gathers from the rows of a sweep file.
+struct Gathered {
+    /// Samples per outcome, in the order of `Outcome::ALL`.
+    counts: [u64; Outcome::ALL.len()],
+    /// Per sector of downhill azimuth relative to the lander: each sample's slope and
+    /// whether it stood.
+    sectors: Vec<Vec<(f64, bool)>>,
+    loads: [Load; 5],
+    thrust: Thrust,
+    /// Each sample's slope and outcome, where the report weighs them onto a terrain.
+    slopes: Vec<(f64, Outcome)>,
+}
+
+impl Gathered {
+    /// The rows of `file`, gathered; each sample's slope and outcome kept if `keep_slopes`.
+    fn read(file: &mut SweepFile, keep_slopes: bool) -> anyhow::Result<Gathered> {
+        let legs = file.legs();
+        let mut counts = [0u64; Outcome::ALL.len()];
+        let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
+        let mut loads = [
+            Load {
+                name: "peak CG acceleration",
+                unit: "m/s^2",
+                values: Vec::new(),
+            },
+            Load {
+                name: "peak acceleration along Z_B",
+                unit: "m/s^2",
+                values: Vec::new(),
+            },
+            Load {
+                name: "peak leg normal force (largest leg)",
+                unit: "N",
+                values: Vec::new(),
+            },
+            Load {
+                name: "damper stroke (longest leg)",
+                unit: "mm",
+                values: Vec::new(),
+            },
+            Load {
+                name: "energy absorbed by the dampers (all legs)",
+                unit: "J",
+                values: Vec::new(),
+            },
+        ];
+        let mut thrust = Thrust::default();
+        let mut slopes: Vec<(f64, Outcome)> = Vec::new();
+        for b in file.batches() {
+            let b = b?;
+            let f = |name: &str| b.f64s(name);
+            let control = ThrustColumns::of(&b)?;
+            let outcomes = b.outcomes()?;
+            let (slope, azimuth, yaw) =
+                (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
+            let (acc, acc_z) = (
+                f("peak_acceleration_m_s2")?,
+                f("peak_acceleration_z_body_m_s2")?,
+            );
+            let (force, stroke, energy) = (
+                b.per_leg(legs, "peak_normal_force_n")?,
+                b.per_leg(legs, "stroke_m")?,
+                b.per_leg(legs, "absorbed_j")?,
+            );
+            for (i, &o) in outcomes.iter().enumerate() {
+                counts[o as usize] += 1;
+                if keep_slopes {
+                    slopes.push((slope.value(i), o));
+                }
+                let relative = relative_azimuth_deg(azimuth.value(i), yaw.value(i));
+                sectors[sector_of(relative)].push((slope.value(i), o == Outcome::Stable));
+                let max_of =
+                    |cols: &[&Float64Array]| cols.iter().map(|c| c.value(i)).fold(0.0, f64::max);
+                loads[0].values.push(acc.value(i));
+                loads[1].values.push(acc_z.value(i));
+                loads[2].values.push(max_of(&force));
+                loads[3].values.push(1e3 * max_of(&stroke));
+                loads[4]
+                    .values
+                    .push(energy.iter().map(|c| c.value(i)).sum());
+                if let Some(c) = &control {
+                    thrust.push(c, i, o);
+                }
+            }
+        }
+        Ok(Gathered {
+            counts,
+            sectors,
+            loads,
+            thrust,
+            slopes,
+        })
+    }
+}
+
 /// The report of the sweep file at `path`, as Markdown.
 /// With `terrain` (a `--slope-distribution` and its text), the outcome shares on that
 /// terrain follow the sweep's own (`weighting`).
@@ -28,91 +123,40 @@ pub fn report(
     path: &Path,
     terrain: Option<(&crate::weighting::SlopeDistribution, &str)>,
 ) -> anyhow::Result<String> {
-    let (schema, batches) = open_sweep(path)?;
-    let meta = schema.metadata();
-    let legs = crate::output::read::leg_count(&schema);
-    let mut counts = [0u64; Outcome::ALL.len()];
-    let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
-    let mut loads = [
-        Load {
-            name: "peak CG acceleration",
-            unit: "m/s^2",
-            values: Vec::new(),
-        },
-        Load {
-            name: "peak acceleration along Z_B",
-            unit: "m/s^2",
-            values: Vec::new(),
-        },
-        Load {
-            name: "peak leg normal force (largest leg)",
-            unit: "N",
-            values: Vec::new(),
-        },
-        Load {
-            name: "damper stroke (longest leg)",
-            unit: "mm",
-            values: Vec::new(),
-        },
-        Load {
-            name: "energy absorbed by the dampers (all legs)",
-            unit: "J",
-            values: Vec::new(),
-        },
-    ];
-    let mut thrust = Thrust::default();
-    let mut slopes: Vec<(f64, Outcome)> = Vec::new();
-    for b in batches {
-        let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
-        let f = |name: &str| float_column(&b, name, path);
-        let control = ThrustColumns::of(&b, path)?;
-        let outcome = b
-            .column_by_name("outcome")
-            .and_then(|c| c.as_any().downcast_ref::<StringArray>())
-            .ok_or_else(|| anyhow!("{}: no outcome column", path.display()))?;
-        let (slope, azimuth, yaw) = (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
-        let (acc, acc_z) = (
-            f("peak_acceleration_m_s2")?,
-            f("peak_acceleration_z_body_m_s2")?,
-        );
-        let per_leg = |what: &str| -> anyhow::Result<Vec<&Float64Array>> {
-            (0..legs).map(|k| f(&format!("leg{k}_{what}"))).collect()
-        };
-        let (force, stroke, energy) = (
-            per_leg("peak_normal_force_n")?,
-            per_leg("stroke_m")?,
-            per_leg("absorbed_j")?,
-        );
-        for i in 0..b.num_rows() {
-            let name = outcome.value(i);
-            let o = Outcome::from_name(name)
-                .ok_or_else(|| anyhow!("{}: unknown outcome {name:?}", path.display()))?;
-            counts[o as usize] += 1;
-            if terrain.is_some() {
-                slopes.push((slope.value(i), o));
-            }
-            let relative = relative_azimuth_deg(azimuth.value(i), yaw.value(i));
-            sectors[sector_of(relative)].push((slope.value(i), o == Outcome::Stable));
-            let max_of =
-                |cols: &[&Float64Array]| cols.iter().map(|c| c.value(i)).fold(0.0, f64::max);
-            loads[0].values.push(acc.value(i));
-            loads[1].values.push(acc_z.value(i));
-            loads[2].values.push(max_of(&force));
-            loads[3].values.push(1e3 * max_of(&stroke));
-            loads[4]
-                .values
-                .push(energy.iter().map(|c| c.value(i)).sum());
-            if let Some(c) = &control {
-                thrust.push(c, i, o);
-            }
-        }
-    }
+    let mut file = SweepFile::open(path)?;
+    let Gathered {
+        counts,
+        mut sectors,
+        mut loads,
+        mut thrust,
+        slopes,
+    } = Gathered::read(&mut file, terrain.is_some())?;
+    let meta = file.metadata();
     let total: u64 = counts.iter().sum();
     if total == 0 {
         bail!("{} holds no samples", path.display());
     }
 
     let mut t = String::new();
+    write_outcomes(&mut t, path, meta, &counts, total);
+    if let Some((terrain, text)) = terrain {
+        write_terrain(&mut t, path, meta, &slopes, terrain, text)?;
+    }
+    write_allowable(&mut t, &mut sectors);
+    write_loads(&mut t, &mut loads);
+    thrust.write(&mut t);
+    write_end(&mut t, path, meta);
+    Ok(t)
+}
+
+/// The title, the samples and the outcome shares with their intervals.
+fn write_outcomes(
+    t: &mut String,
+    path: &Path,
+    meta: &arrow_schema::Metadata,
+    counts: &[u64; Outcome::ALL.len()],
+    total: u64,
+) {
     let _ = writeln!(t, "# touchdown report: {}\n", path.display());
     let _ = writeln!(
         t,
@@ -125,7 +169,7 @@ pub fn report(
         t,
         "| outcome | samples | share | 95 % interval |\n|---|---:|---:|---:|"
     );
-    for (name, k) in Outcome::ALL.iter().map(|o| o.name()).zip(&counts) {
+    for (name, k) in Outcome::ALL.iter().map(|o| o.name()).zip(counts) {
         let (lo, hi) = wilson_interval(*k, total);
         let _ = writeln!(
             t,
@@ -135,29 +179,43 @@ pub fn report(
             100.0 * hi
         );
     }
-    if let Some((terrain, text)) = terrain {
-        if meta.contains_key(crate::scenario::METADATA_KEYS[1]) {
-            anyhow::bail!(
-                "--slope-distribution: {} cannot be weighed onto a terrain: its slopes come \
-                 from a table of inputs, not from a distribution",
-                path.display()
-            );
-        }
-        let scenario = meta
-            .get("touchdown.scenario")
-            .ok_or_else(|| anyhow!("{}: no touchdown.scenario in its metadata", path.display()))
-            .and_then(|text| {
-                crate::scenario::Scenario::from_toml(text)
-                    .map_err(|e| anyhow!("the scenario stored in {}: {e}", path.display()))
-            })?;
-        let w = crate::weighting::weigh(&scenario, &slopes, terrain).map_err(|e| {
-            anyhow!(
-                "--slope-distribution: {} cannot be weighed onto this terrain: {e}",
-                path.display()
-            )
-        })?;
-        let _ = write!(t, "\n{}", crate::weighting::markdown(&w, terrain, text));
+}
+
+/// The outcome shares weighed onto the terrain of a `--slope-distribution`.
+fn write_terrain(
+    t: &mut String,
+    path: &Path,
+    meta: &arrow_schema::Metadata,
+    slopes: &[(f64, Outcome)],
+    terrain: &crate::weighting::SlopeDistribution,
+    text: &str,
+) -> anyhow::Result<()> {
+    if meta.contains_key(crate::scenario::METADATA_KEYS[1]) {
+        anyhow::bail!(
+            "--slope-distribution: {} cannot be weighed onto a terrain: its slopes come \
+             from a table of inputs, not from a distribution",
+            path.display()
+        );
     }
+    let scenario = meta
+        .get("touchdown.scenario")
+        .ok_or_else(|| anyhow!("{}: no touchdown.scenario in its metadata", path.display()))
+        .and_then(|text| {
+            crate::scenario::Scenario::from_toml(text)
+                .map_err(|e| anyhow!("the scenario stored in {}: {e}", path.display()))
+        })?;
+    let w = crate::weighting::weigh(&scenario, slopes, terrain).map_err(|e| {
+        anyhow!(
+            "--slope-distribution: {} cannot be weighed onto this terrain: {e}",
+            path.display()
+        )
+    })?;
+    let _ = write!(t, "\n{}", crate::weighting::markdown(&w, terrain, text));
+    Ok(())
+}
+
+/// The allowable slope per sector of relative azimuth.
+fn write_allowable(t: &mut String, sectors: &mut [Vec<(f64, bool)>]) {
     let _ = writeln!(
         t,
         "\n## Allowable slope\n\nThe largest slope at or below which at least {stable:.0} % of \
@@ -186,11 +244,15 @@ pub fn report(
             allowable.interval_cell()
         );
     }
+}
+
+/// The peak loads: mean, 99th percentile and largest.
+fn write_loads(t: &mut String, loads: &mut [Load]) {
     let _ = writeln!(
         t,
         "\n## Peak loads\n\n| quantity | mean | 99th percentile | largest |\n|---|---:|---:|---:|"
     );
-    for l in &mut loads {
+    for l in loads {
         let mean = l.values.iter().sum::<f64>() / l.values.len().max(1) as f64;
         let p99 = quantile(&mut l.values, 0.99);
         let max = l.values.last().copied().unwrap_or(0.0);
@@ -200,7 +262,10 @@ pub fn report(
             l.name, l.unit
         );
     }
-    thrust.write(&mut t);
+}
+
+/// The note on dampers that are off, and how to see one sample in detail.
+fn write_end(t: &mut String, path: &Path, meta: &arrow_schema::Metadata) {
     let dampers_off = meta
         .get("touchdown.scenario")
         .and_then(|text| crate::scenario::Scenario::from_toml(text).ok())
@@ -219,7 +284,6 @@ pub fn report(
          its time history; `touchdown plot` draws it.",
         path.display()
     );
-    Ok(t)
 }
 
 /// The columns of what the thrusters did, in a batch of a sweep with a control loop.
@@ -232,19 +296,16 @@ struct ThrustColumns<'a> {
 
 impl<'a> ThrustColumns<'a> {
     /// The columns of `b`, or `None` in a sweep without a control loop (no `propellant_kg`).
-    fn of(b: &'a RecordBatch, path: &Path) -> anyhow::Result<Option<ThrustColumns<'a>>> {
-        if b.column_by_name("propellant_kg").is_none() {
+    fn of(b: &'a SweepBatch<'_>) -> anyhow::Result<Option<ThrustColumns<'a>>> {
+        if !b.has("propellant_kg") {
             return Ok(None);
         }
-        let firings = b
-            .column_by_name("firings")
-            .and_then(|c| c.as_any().downcast_ref::<UInt32Array>())
-            .ok_or_else(|| anyhow!("{}: no UInt32 column firings", path.display()))?;
+        let firings = b.u32s("firings")?;
         Ok(Some(ThrustColumns {
-            propellant_kg: float_column(b, "propellant_kg", path)?,
-            on_time_s: float_column(b, "thrust_on_time_s", path)?,
+            propellant_kg: b.f64s("propellant_kg")?,
+            on_time_s: b.f64s("thrust_on_time_s")?,
             firings,
-            hold_down_impulse_n_s: float_column(b, "hold_down_impulse_n_s", path)?,
+            hold_down_impulse_n_s: b.f64s("hold_down_impulse_n_s")?,
         }))
     }
 }
@@ -313,15 +374,4 @@ impl Thrust {
             }
         }
     }
-}
-
-/// A Float64 column of a batch, by name.
-pub(crate) fn float_column<'a>(
-    b: &'a RecordBatch,
-    name: &str,
-    path: &Path,
-) -> anyhow::Result<&'a Float64Array> {
-    b.column_by_name(name)
-        .and_then(|c| c.as_any().downcast_ref::<Float64Array>())
-        .ok_or_else(|| anyhow!("{}: no Float64 column {name}", path.display()))
 }

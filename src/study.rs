@@ -2,7 +2,8 @@
 //! the outcome shares with 95 % intervals, the allowable slope per azimuth sector and the
 //! static tipping limit, read from the value's sweep file; written as Arrow and Markdown.
 
-use crate::output::columns::Table;
+use crate::output::field;
+use crate::output::sweep::SweepFile;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
 use crate::stats::{
@@ -10,8 +11,11 @@ use crate::stats::{
     wilson_interval,
 };
 use anyhow::bail;
+use arrow_array::{ArrayRef, Float64Array, StringArray, UInt64Array};
+use arrow_schema::DataType;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// A key and the values it takes (`--vary KEY=MIN:MAX:COUNT`).
 #[derive(Debug, Clone, PartialEq)]
@@ -147,28 +151,29 @@ impl Row {
     /// The line of the value `value`, whose sweep of `scenario` with `samples` samples is
     /// the file `path`.
     pub fn read(value: f64, path: &Path, scenario: &Scenario, samples: u64) -> anyhow::Result<Row> {
-        let t = Table::read(path, |n| {
-            matches!(n, "slope_deg" | "downhill_azimuth_deg" | "yaw_deg")
-        })?;
-        if t.rows as u64 != samples {
-            bail!(
-                "{} holds {} samples, not the {samples} of the study",
-                path.display(),
-                t.rows
-            );
-        }
-        let (slope, azimuth, yaw) = (
-            t.column("slope_deg", path)?,
-            t.column("downhill_azimuth_deg", path)?,
-            t.column("yaw_deg", path)?,
-        );
+        let mut file = SweepFile::open(path)?;
         let mut counts = [0u64; Outcome::ALL.len()];
         let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
-        for i in 0..t.rows {
-            let o = t.outcome[i];
-            counts[usize::from(o)] += 1;
-            let relative = relative_azimuth_deg(azimuth[i], yaw[i]);
-            sectors[sector_of(relative)].push((slope[i], o == Outcome::Stable as u8));
+        let mut rows = 0;
+        for b in file.batches() {
+            let b = b?;
+            let (slope, azimuth, yaw) = (
+                b.f64s("slope_deg")?,
+                b.f64s("downhill_azimuth_deg")?,
+                b.f64s("yaw_deg")?,
+            );
+            for (i, o) in b.outcomes()?.into_iter().enumerate() {
+                counts[o as usize] += 1;
+                let relative = relative_azimuth_deg(azimuth.value(i), yaw.value(i));
+                sectors[sector_of(relative)].push((slope.value(i), o == Outcome::Stable));
+            }
+            rows += b.rows();
+        }
+        if rows as u64 != samples {
+            bail!(
+                "{} holds {rows} samples, not the {samples} of the study",
+                path.display()
+            );
         }
         let allowable: [Allowable; SECTORS] =
             std::array::from_fn(|k| allowable_slope(&mut sectors[k]));
@@ -228,41 +233,76 @@ fn allowable_columns(a: Allowable) -> [Option<f64>; 3] {
     }
 }
 
+/// The fields of the study's table and their columns, in step.
+struct Columns {
+    fields: Vec<arrow_schema::Field>,
+    columns: Vec<ArrayRef>,
+}
+
 /// Writes the study's table to `path` (Arrow IPC file).
 pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Result<()> {
-    use crate::output::field;
-    use arrow_array::{ArrayRef, Float64Array, RecordBatch, StringArray, UInt64Array};
-    use arrow_schema::{DataType, Schema};
-    use std::sync::Arc;
-    let mut fields = vec![
-        field(
-            about.key,
-            DataType::Float64,
-            "",
-            "the value of the varied scenario key",
-        ),
-        field(
-            "samples",
-            DataType::UInt64,
-            "",
-            "samples of the value's sweep",
-        ),
-    ];
-    let mut columns: Vec<ArrayRef> = vec![
-        Arc::new(Float64Array::from_iter_values(rows.iter().map(|r| r.value))),
-        Arc::new(UInt64Array::from_iter_values(
-            rows.iter().map(|r| r.samples),
-        )),
-    ];
+    use arrow_array::RecordBatch;
+    use arrow_schema::Schema;
+    let mut c = Columns {
+        fields: vec![
+            field(
+                about.key,
+                DataType::Float64,
+                "",
+                "the value of the varied scenario key",
+            ),
+            field(
+                "samples",
+                DataType::UInt64,
+                "",
+                "samples of the value's sweep",
+            ),
+        ],
+        columns: vec![
+            Arc::new(Float64Array::from_iter_values(rows.iter().map(|r| r.value))),
+            Arc::new(UInt64Array::from_iter_values(
+                rows.iter().map(|r| r.samples),
+            )),
+        ],
+    };
+    outcome_columns(&mut c, rows);
+    sector_columns(&mut c, rows);
+    static_range_columns(&mut c, rows);
+    c.fields.push(field(
+        "sweep_file",
+        DataType::Utf8,
+        "",
+        "the value's sweep file, in the study's folder",
+    ));
+    c.columns
+        .push(Arc::new(StringArray::from_iter_values(rows.iter().map(
+            |r| {
+                r.file
+                    .file_name()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+                    .into_owned()
+            },
+        ))));
+    let schema = Arc::new(Schema::new(c.fields).with_metadata(table_metadata(about)));
+    let batch = RecordBatch::try_new(schema.clone(), c.columns)?;
+    let (file, out) = crate::output::AtomicFile::create(path)?;
+    let mut w = crate::output::IpcWriter::new(&file, out, &schema)?;
+    w.write(&batch)?;
+    file.commit(w.finish()?)
+}
+
+/// Per outcome: its samples, its share and the share's 95 % interval.
+fn outcome_columns(c: &mut Columns, rows: &[Row]) {
     for (k, o) in Outcome::ALL.iter().enumerate() {
         let name = o.name();
-        fields.push(field(
+        c.fields.push(field(
             name,
             DataType::UInt64,
             "",
             &format!("samples {name}"),
         ));
-        columns.push(Arc::new(UInt64Array::from_iter_values(
+        c.columns.push(Arc::new(UInt64Array::from_iter_values(
             rows.iter().map(|r| r.counts[k]),
         )));
         for (j, (suffix, what)) in [
@@ -273,20 +313,25 @@ pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Resu
         .iter()
         .enumerate()
         {
-            fields.push(field(
+            c.fields.push(field(
                 &format!("{name}_{suffix}"),
                 DataType::Float64,
                 "",
                 &format!("{name}: {what}"),
             ));
-            columns.push(Arc::new(Float64Array::from_iter_values(rows.iter().map(
-                |r| {
-                    let (p, lo, hi) = r.share(k);
-                    [p, lo, hi][j]
-                },
-            ))));
+            c.columns
+                .push(Arc::new(Float64Array::from_iter_values(rows.iter().map(
+                    |r| {
+                        let (p, lo, hi) = r.share(k);
+                        [p, lo, hi][j]
+                    },
+                ))));
         }
     }
+}
+
+/// Per sector: the allowable slope and its interval, and the least static tipping limit.
+fn sector_columns(c: &mut Columns, rows: &[Row]) {
     for k in 0..SECTORS {
         let s = sector_name(k);
         for (j, (suffix, what)) in [
@@ -300,7 +345,7 @@ pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Resu
         .iter()
         .enumerate()
         {
-            fields.push(
+            c.fields.push(
                 field(
                     &format!("allowable_slope_{s}{suffix}_deg"),
                     DataType::Float64,
@@ -309,11 +354,11 @@ pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Resu
                 )
                 .with_nullable(true),
             );
-            columns.push(Arc::new(Float64Array::from_iter(
+            c.columns.push(Arc::new(Float64Array::from_iter(
                 rows.iter().map(|r| allowable_columns(r.allowable[k])[j]),
             )));
         }
-        fields.push(
+        c.fields.push(
             field(
                 &format!("static_limit_{s}_deg"),
                 DataType::Float64,
@@ -325,12 +370,16 @@ pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Resu
             )
             .with_nullable(true),
         );
-        columns.push(Arc::new(Float64Array::from_iter(
+        c.columns.push(Arc::new(Float64Array::from_iter(
             rows.iter().map(|r| r.static_limit[k]),
         )));
     }
+}
+
+/// The least and the greatest static tipping limit over all azimuths.
+fn static_range_columns(c: &mut Columns, rows: &[Row]) {
     for (j, which) in ["least", "greatest"].iter().enumerate() {
-        fields.push(
+        c.fields.push(
             field(
                 &format!("static_limit_{which}_deg"),
                 DataType::Float64,
@@ -339,27 +388,17 @@ pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Resu
             )
             .with_nullable(true),
         );
-        columns.push(Arc::new(Float64Array::from_iter(
+        c.columns.push(Arc::new(Float64Array::from_iter(
             rows.iter()
                 .map(|r| r.static_range.map(|(lo, hi)| [lo, hi][j])),
         )));
     }
-    fields.push(field(
-        "sweep_file",
-        DataType::Utf8,
-        "",
-        "the value's sweep file, in the study's folder",
-    ));
-    columns.push(Arc::new(StringArray::from_iter_values(rows.iter().map(
-        |r| {
-            r.file
-                .file_name()
-                .unwrap_or_default()
-                .to_string_lossy()
-                .into_owned()
-        },
-    ))));
-    let meta = [
+}
+
+/// The table's provenance: kind, engine, the varied key and its values, seed, samples and
+/// the base scenario.
+fn table_metadata(about: &About<'_>) -> std::collections::HashMap<String, String> {
+    [
         ("touchdown.kind", "study".to_string()),
         ("touchdown.engine", crate::output::ENGINE.to_string()),
         ("touchdown.study.key", about.key.to_string()),
@@ -373,13 +412,7 @@ pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Resu
     ]
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
-    .collect::<std::collections::HashMap<String, String>>();
-    let schema = Arc::new(Schema::new(fields).with_metadata(meta));
-    let batch = RecordBatch::try_new(schema.clone(), columns)?;
-    let (file, out) = crate::output::AtomicFile::create(path)?;
-    let mut w = crate::output::IpcWriter::new(&file, out, &schema)?;
-    w.write(&batch)?;
-    file.commit(w.finish()?)
+    .collect()
 }
 
 /// A Markdown cell of an allowable slope and its interval.

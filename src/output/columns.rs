@@ -1,8 +1,7 @@
 //! Any touchdown file read back as named columns (a sweep, shard, trace or study file, Arrow
 //! IPC or Parquet), for what draws or tabulates it.
 
-use crate::output::read::{format_of, open};
-use crate::reference::Outcome;
+use crate::output::read::{format_of, open, outcome_of};
 use anyhow::anyhow;
 use arrow_array::cast::AsArray;
 use arrow_array::types::Float64Type;
@@ -46,10 +45,7 @@ impl Table {
                         anyhow!("{}: the outcome column is not text", path.display())
                     })?;
                     for v in s.iter() {
-                        let v = v.unwrap_or("");
-                        let o = Outcome::from_name(v)
-                            .ok_or_else(|| anyhow!("{}: unknown outcome {v:?}", path.display()))?;
-                        outcome.push(o as u8);
+                        outcome.push(outcome_of(v.unwrap_or(""), path)? as u8);
                     }
                     continue;
                 }

@@ -92,7 +92,7 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         table: &table,
         kept: &[],
     };
-    let legs = super::read::leg_count(&files[0].schema);
+    let legs = super::sweep::leg_count(&files[0].schema);
     // The columns passed through from a table of inputs come after the sweep's own.
     let own = schema(legs, &info).fields().len();
     let kept: Vec<arrow_schema::FieldRef> =

@@ -1,7 +1,9 @@
-//! Reading sweep files back (for `merge` and `--resume`): Arrow IPC or Parquet, told
-//! apart by their first bytes, with the schema metadata they were written with.
+//! Reading files of touchdown back, whole batches as written: Arrow IPC or Parquet, told
+//! apart by their first bytes, with the schema metadata they were written with (for
+//! `merge`, `--resume` and the readers of columns: `sweep::SweepFile`, `columns::Table`).
 
 use super::format::{BATCH_ROWS, Format};
+use crate::reference::Outcome;
 use anyhow::{anyhow, bail};
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;
@@ -49,28 +51,9 @@ pub fn open(path: &Path, format: Format) -> anyhow::Result<(SchemaRef, Batches)>
     })
 }
 
-/// The number of legs of a sweep file with `schema` (its per-leg peak force columns).
-#[must_use]
-pub fn leg_count(schema: &arrow_schema::Schema) -> usize {
-    schema
-        .fields()
-        .iter()
-        .filter(|f| f.name().ends_with("_peak_normal_force_n"))
-        .count()
-}
-
-/// A sweep (or shard) file of touchdown at `path`, Arrow or Parquet: its schema with the
-/// metadata and its batches; any other file is refused, saying what it is.
-pub fn open_sweep(path: &Path) -> anyhow::Result<(SchemaRef, Batches)> {
-    let (schema, batches) = open(path, format_of(path)?)?;
-    match schema.metadata().get("touchdown.kind").map(String::as_str) {
-        Some("sweep") => Ok((schema, batches)),
-        Some(kind) => bail!(
-            "{} is not a sweep file of touchdown (it is a {kind} file)",
-            path.display()
-        ),
-        None => bail!("{} is not a sweep file of touchdown", path.display()),
-    }
+/// The outcome named `name` in the outcome column of the file at `path`.
+pub fn outcome_of(name: &str, path: &Path) -> anyhow::Result<Outcome> {
+    Outcome::from_name(name).ok_or_else(|| anyhow!("{}: unknown outcome {name:?}", path.display()))
 }
 
 /// Record batches as a reader yields them.

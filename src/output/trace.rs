@@ -415,6 +415,57 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
                 .map(|(n, u, d)| field(n, DataType::Float64, u, d).with_nullable(true)),
         );
     }
+    let meta = metadata(info, every);
+    let schema = Arc::new(Schema::new_with_metadata(fields, meta));
+
+    let (file, out) = AtomicFile::create(path)?;
+    let mut writer = IpcWriter::new(&file, out, &schema)?;
+    let mut data = Rows::new(numbers, sensed);
+    let control = looped.is_some();
+    let mut rows = 0u64;
+    let mut index = 0u64;
+    // Thrust integral so far, N s.
+    let mut impulse_n_s = 0.0;
+    let propellant = |impulse_n_s: f64| {
+        looped
+            .as_ref()
+            .map(|l| (l, impulse_n_s / l.control.exhaust_speed_m_s))
+    };
+    let mut failure: Option<anyhow::Error> = None;
+    let (_, end) = crate::reference::run::run_to_end(model, info.sample, |report| {
+        if failure.is_some() {
+            return;
+        }
+        if index.is_multiple_of(every) {
+            data.push(model, report, propellant(impulse_n_s));
+            rows += 1;
+            if data.len() >= BATCH_ROWS
+                && let Err(e) = data
+                    .take(&schema, control)
+                    .and_then(|b| Ok(writer.write(&b)?))
+            {
+                failure = Some(e);
+            }
+        }
+        impulse_n_s += report.thrust.flow_n * report.dt_s;
+        index += 1;
+    });
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    // The last row is the state at the decision, whatever `every`.
+    data.push(model, &end, propellant(impulse_n_s));
+    rows += 1;
+    if data.len() > 0 {
+        writer.write(&data.take(&schema, control)?)?;
+    }
+    file.commit(writer.finish()?)?;
+    Ok(rows)
+}
+
+/// The trace's provenance: engine, kind, scenario, seeds, the sample (index, outcome,
+/// terrain, inputs, parameters) and its table of inputs, and `every`.
+fn metadata(info: &TraceInfo<'_>, every: u64) -> BTreeMap<String, String> {
     let s = info.summary;
     let mut meta = BTreeMap::from([
         ("touchdown.engine".to_string(), ENGINE.to_string()),
@@ -466,49 +517,5 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     {
         meta.insert(format!("touchdown.parameter.{name}"), value.to_string());
     }
-    let schema = Arc::new(Schema::new_with_metadata(fields, meta));
-
-    let (file, out) = AtomicFile::create(path)?;
-    let mut writer = IpcWriter::new(&file, out, &schema)?;
-    let mut data = Rows::new(numbers, sensed);
-    let control = looped.is_some();
-    let mut rows = 0u64;
-    let mut index = 0u64;
-    // Thrust integral so far, N s.
-    let mut impulse_n_s = 0.0;
-    let propellant = |impulse_n_s: f64| {
-        looped
-            .as_ref()
-            .map(|l| (l, impulse_n_s / l.control.exhaust_speed_m_s))
-    };
-    let mut failure: Option<anyhow::Error> = None;
-    let (_, end) = crate::reference::run::run_to_end(model, info.sample, |report| {
-        if failure.is_some() {
-            return;
-        }
-        if index.is_multiple_of(every) {
-            data.push(model, report, propellant(impulse_n_s));
-            rows += 1;
-            if data.len() >= BATCH_ROWS
-                && let Err(e) = data
-                    .take(&schema, control)
-                    .and_then(|b| Ok(writer.write(&b)?))
-            {
-                failure = Some(e);
-            }
-        }
-        impulse_n_s += report.thrust.flow_n * report.dt_s;
-        index += 1;
-    });
-    if let Some(e) = failure {
-        return Err(e);
-    }
-    // The last row is the state at the decision, whatever `every`.
-    data.push(model, &end, propellant(impulse_n_s));
-    rows += 1;
-    if data.len() > 0 {
-        writer.write(&data.take(&schema, control)?)?;
-    }
-    file.commit(writer.finish()?)?;
-    Ok(rows)
+    meta
 }

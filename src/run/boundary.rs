@@ -126,20 +126,7 @@ pub fn search(
             )
         })?;
         total += rows.len() as u64;
-        for (k, sector) in sectors.iter_mut().enumerate() {
-            if wanted[k] == 0 {
-                continue;
-            }
-            sector.used += got[k];
-            sector.allowable = pooled_allowable(&sector.rounds);
-            sector.stop = sector.stop.or(stop_rule(
-                sector.allowable,
-                range,
-                settings.tolerance,
-                upper[k],
-                (sector.used, settings.max_samples_per_sector),
-            ));
-        }
+        close_round(&mut sectors, &wanted, &got, &upper, range, settings);
         if progress {
             let open = sectors.iter().filter(|s| s.stop.is_none()).count();
             eprintln!(
@@ -156,6 +143,32 @@ pub fn search(
         dist,
         design,
     })
+}
+
+/// Each sector that took part in a round after its samples ran: its samples counted, its
+/// allowable slope pooled over its rounds, and whether it stops.
+fn close_round(
+    sectors: &mut [Sector],
+    wanted: &[u64],
+    got: &[u64],
+    upper: &[f64],
+    range: (f64, f64),
+    settings: &Settings,
+) {
+    for (k, sector) in sectors.iter_mut().enumerate() {
+        if wanted[k] == 0 {
+            continue;
+        }
+        sector.used += got[k];
+        sector.allowable = pooled_allowable(&sector.rounds);
+        sector.stop = sector.stop.or(stop_rule(
+            sector.allowable,
+            range,
+            settings.tolerance,
+            upper[k],
+            (sector.used, settings.max_samples_per_sector),
+        ));
+    }
 }
 
 /// The slope distribution of `scenario`, refused where the search cannot draw below a bound

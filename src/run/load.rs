@@ -69,8 +69,8 @@ pub fn scenario_of_sweep(
     index: u64,
     inputs: Option<&Path>,
 ) -> anyhow::Result<(Scenario, String)> {
-    let (schema, _) = crate::output::read::open_sweep(path)?;
-    let meta = schema.metadata();
+    let file = crate::output::sweep::SweepFile::open(path)?;
+    let meta = file.metadata();
     let get = |key: &str| {
         meta.get(key)
             .ok_or_else(|| anyhow::anyhow!("{}: no {key} in its metadata", path.display()))

@@ -168,8 +168,8 @@ fn differs(
 
 /// The metadata of the sweep file `path`.
 fn metadata_of(path: &Path) -> anyhow::Result<std::collections::HashMap<String, String>> {
-    let (schema, _) = crate::output::read::open_sweep(path)?;
-    Ok(schema
+    let file = crate::output::sweep::SweepFile::open(path)?;
+    Ok(file
         .metadata()
         .iter()
         .map(|(k, v)| (k.clone(), v.clone()))

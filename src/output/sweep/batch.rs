@@ -1,0 +1,96 @@
+//! Rows of a sweep as one record batch of its schema, column by column.
+
+use crate::scenario::INPUT_FIELDS;
+use crate::sweep::Row;
+use arrow_array::builder::{Float64Builder, StringBuilder, UInt32Builder, UInt64Builder};
+use arrow_array::{ArrayRef, RecordBatch};
+use arrow_schema::SchemaRef;
+use std::sync::Arc;
+/// A record batch of `rows` in `schema`, the columns passed through from a table of
+/// inputs (`kept`, last in the schema) as they are.
+pub fn batch(
+    schema: &SchemaRef,
+    legs: usize,
+    rows: &[Row],
+    kept: Vec<ArrayRef>,
+) -> anyhow::Result<RecordBatch> {
+    let n = rows.len();
+    let u64s = |get: &dyn Fn(&Row) -> u64| {
+        let mut b = UInt64Builder::with_capacity(n);
+        rows.iter().for_each(|r| b.append_value(get(r)));
+        Arc::new(b.finish()) as ArrayRef
+    };
+    let f64s = |get: &dyn Fn(&Row) -> f64| {
+        let mut b = Float64Builder::with_capacity(n);
+        rows.iter().for_each(|r| b.append_value(get(r)));
+        Arc::new(b.finish()) as ArrayRef
+    };
+    let u32s = |get: &dyn Fn(&Row) -> u32| {
+        let mut b = UInt32Builder::with_capacity(n);
+        rows.iter().for_each(|r| b.append_value(get(r)));
+        Arc::new(b.finish()) as ArrayRef
+    };
+    let mut cols: Vec<ArrayRef> = vec![u64s(&|r| r.sample.index), u64s(&|r| r.sample.seed)];
+    for k in 0..INPUT_FIELDS.len() {
+        cols.push(f64s(&|r| r.sample.inputs.to_array()[k]));
+    }
+    cols.push(u32s(&|r| r.sample.terrain_tile));
+    cols.push(f64s(&|r| r.sample.terrain_offset_m[0]));
+    cols.push(f64s(&|r| r.sample.terrain_offset_m[1]));
+    let mut outcome = StringBuilder::with_capacity(n, n * 8);
+    rows.iter()
+        .for_each(|r| outcome.append_value(r.summary.outcome.name()));
+    cols.push(Arc::new(outcome.finish()));
+    cols.push(f64s(&|r| r.summary.decided_s));
+    cols.push(u64s(&|r| r.summary.steps));
+    cols.push(f64s(&|r| r.summary.final_tilt_deg));
+    cols.push(f64s(&|r| r.summary.max_tilt_deg));
+    cols.push(f64s(&|r| r.summary.displacement_m));
+    cols.push(f64s(&|r| r.summary.peak_acceleration_m_s2));
+    cols.push(f64s(&|r| r.summary.peak_acceleration_z_body_m_s2));
+    cols.push(u32s(&|r| r.summary.bounces));
+    let mut first = Float64Builder::with_capacity(n);
+    rows.iter()
+        .for_each(|r| first.append_option(r.summary.first_contact_s));
+    cols.push(Arc::new(first.finish()));
+    cols.push(f64s(&|r| r.summary.max_penetration_m));
+    for k in 0..legs {
+        cols.push(f64s(&|r| r.summary.legs[k].peak_normal_force_n));
+        cols.push(f64s(&|r| r.summary.legs[k].stroke_m));
+        cols.push(f64s(&|r| r.summary.legs[k].absorbed_j));
+    }
+    let control = |r: &Row| r.summary.control.as_deref().copied().unwrap_or_default();
+    let descent = |r: &Row| control(r).descent.unwrap_or_default();
+    let computed = schema.fields().len() - kept.len();
+    for field in schema.fields()[..computed].iter().skip(cols.len()) {
+        cols.push(match field.name().as_str() {
+            "propellant_kg" => f64s(&|r| control(r).propellant_kg),
+            "thrust_on_time_s" => f64s(&|r| control(r).on_time_s),
+            "firings" => u32s(&|r| control(r).firings),
+            "hold_down_impulse_n_s" => f64s(&|r| control(r).hold_down_impulse_n_s),
+            "hold_down_thrust_n" => f64s(&|r| control(r).hold_down_thrust_n),
+            "hold_down_duration_s" => f64s(&|r| control(r).hold_down_duration_s),
+            "attitude_kp_n_m_per_rad" => f64s(&|r| control(r).kp_n_m_per_rad),
+            "attitude_kd_n_m_s_per_rad" => f64s(&|r| control(r).kd_n_m_s_per_rad),
+            "descent_start_altitude_m" => f64s(&|r| descent(r).start_altitude_m),
+            "descent_start_speed_m_s" => f64s(&|r| descent(r).start_speed_m_s),
+            "descent_braking_m_s2" => f64s(&|r| descent(r).braking_m_s2),
+            "descent_gain_per_s" => f64s(&|r| descent(r).gain_per_s),
+            "descent_release_speed_m_s" => f64s(&|r| descent(r).release_speed_m_s),
+            "release_time_s" => f64s(&|r| control(r).release_time_s),
+            "release_altitude_m" => f64s(&|r| control(r).release_altitude_m),
+            "release_vx_m_s" => f64s(&|r| control(r).release_velocity_m_s[0]),
+            "release_vy_m_s" => f64s(&|r| control(r).release_velocity_m_s[1]),
+            "release_vz_m_s" => f64s(&|r| control(r).release_velocity_m_s[2]),
+            other => match crate::scenario::Parameter::ALL
+                .iter()
+                .find(|p| p.name() == other)
+            {
+                Some(&p) => f64s(&|r| r.sample.parameters[p as usize]),
+                None => anyhow::bail!("no column {other} in a sweep"),
+            },
+        });
+    }
+    cols.extend(kept);
+    Ok(RecordBatch::try_new(schema.clone(), cols)?)
+}

@@ -1,0 +1,20 @@
+//! The sweep file: one row per sample (MODEL.md section 9), inputs then results, in sample
+//! order, as Arrow IPC or Parquet, written in batches of a fixed row count so that the
+//! bytes depend on the scenario and seed alone (not on threads or timing).
+//!
+//! The folder: `schema` (the columns, their units and the provenance in the metadata),
+//! `batch` (rows as a record batch), `writer` (the file written as rows come, and a
+//! rebatcher for files made of other files), `read` (the one reader of sweep files: its
+//! metadata, legs, typed columns and outcomes).
+
+mod batch;
+mod read;
+mod schema;
+mod writer;
+
+pub use batch::batch;
+pub use read::{SweepBatch, SweepFile, leg_count};
+pub use schema::{
+    CONTROL_COLUMNS, SHARD_KEYS, SweepInfo, control_columns, parameter_columns, schema,
+};
+pub use writer::{Rebatcher, SweepWriter};

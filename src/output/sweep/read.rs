@@ -1,0 +1,147 @@
+//! The one reader of sweep files: a sweep (or shard) file of touchdown opened, its
+//! metadata and leg count, and its batches with typed columns by name and the outcome of
+//! each row, for every command that reads a sweep's columns (report, compare,
+//! sensitivity, study, trace --sweep).
+
+use crate::output::read::{Batches, format_of, open, outcome_of};
+use crate::reference::Outcome;
+use anyhow::{anyhow, bail};
+use arrow_array::{Array, Float64Array, RecordBatch, StringArray, UInt32Array, UInt64Array};
+use arrow_schema::SchemaRef;
+use std::path::{Path, PathBuf};
+
+/// A sweep (or shard) file, Arrow IPC or Parquet, opened: its schema with the metadata it
+/// was written with, and its batches, read as they are asked for (`batches`).
+pub struct SweepFile {
+    path: PathBuf,
+    schema: SchemaRef,
+    batches: Batches,
+}
+
+impl SweepFile {
+    /// Opens the sweep (or shard) file at `path`; any other file is refused, saying what
+    /// it is.
+    pub fn open(path: &Path) -> anyhow::Result<SweepFile> {
+        let (schema, batches) = open(path, format_of(path)?)?;
+        match schema.metadata().get("touchdown.kind").map(String::as_str) {
+            Some("sweep") => Ok(SweepFile {
+                path: path.to_path_buf(),
+                schema,
+                batches,
+            }),
+            Some(kind) => bail!(
+                "{} is not a sweep file of touchdown (it is a {kind} file)",
+                path.display()
+            ),
+            None => bail!("{} is not a sweep file of touchdown", path.display()),
+        }
+    }
+
+    /// The path it was opened at.
+    #[must_use]
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Its schema, with the metadata.
+    #[must_use]
+    pub fn schema(&self) -> &SchemaRef {
+        &self.schema
+    }
+
+    /// The schema metadata it was written with (`touchdown.seed`, `touchdown.scenario`, ...).
+    #[must_use]
+    pub fn metadata(&self) -> &arrow_schema::Metadata {
+        self.schema.metadata()
+    }
+
+    /// The number of legs of its lander (its per-leg peak force columns).
+    #[must_use]
+    pub fn legs(&self) -> usize {
+        leg_count(&self.schema)
+    }
+
+    /// Its batches in file order, each with its columns by name; an error of the file names
+    /// it.
+    pub fn batches(&mut self) -> impl Iterator<Item = anyhow::Result<SweepBatch<'_>>> + '_ {
+        let path = self.path.as_path();
+        self.batches.by_ref().map(move |b| {
+            b.map(|batch| SweepBatch { batch, path })
+                .map_err(|e| anyhow!("cannot read {}: {e}", path.display()))
+        })
+    }
+}
+
+/// A batch of rows of a sweep file, its columns typed by name; a column that is missing
+/// or of another type is an error naming the file and the column.
+pub struct SweepBatch<'a> {
+    batch: RecordBatch,
+    path: &'a Path,
+}
+
+impl SweepBatch<'_> {
+    /// Its rows.
+    #[must_use]
+    pub fn rows(&self) -> usize {
+        self.batch.num_rows()
+    }
+
+    /// Whether it has a column `name`.
+    #[must_use]
+    pub fn has(&self, name: &str) -> bool {
+        self.batch.column_by_name(name).is_some()
+    }
+
+    /// The column `name`, if it is of type `A`; else the error `{path}: no {kind} column
+    /// {name}`.
+    fn typed<A: Array + 'static>(&self, name: &str, kind: &str) -> anyhow::Result<&A> {
+        self.batch
+            .column_by_name(name)
+            .and_then(|c| c.as_any().downcast_ref::<A>())
+            .ok_or_else(|| anyhow!("{}: no {kind} column {name}", self.path.display()))
+    }
+
+    /// A Float64 column, by name.
+    pub fn f64s(&self, name: &str) -> anyhow::Result<&Float64Array> {
+        self.typed(name, "Float64")
+    }
+
+    /// A UInt64 column (`sample`, `sample_seed`, `steps`), by name.
+    pub fn u64s(&self, name: &str) -> anyhow::Result<&UInt64Array> {
+        self.typed(name, "UInt64")
+    }
+
+    /// A UInt32 column (`terrain_tile`, `bounces`, `firings`), by name.
+    pub fn u32s(&self, name: &str) -> anyhow::Result<&UInt32Array> {
+        self.typed(name, "UInt32")
+    }
+
+    /// The Float64 columns `leg{k}_{what}` of legs 0 to `legs - 1`.
+    pub fn per_leg(&self, legs: usize, what: &str) -> anyhow::Result<Vec<&Float64Array>> {
+        (0..legs)
+            .map(|k| self.f64s(&format!("leg{k}_{what}")))
+            .collect()
+    }
+
+    /// The outcome of each row.
+    pub fn outcomes(&self) -> anyhow::Result<Vec<Outcome>> {
+        let names = self
+            .batch
+            .column_by_name("outcome")
+            .and_then(|c| c.as_any().downcast_ref::<StringArray>())
+            .ok_or_else(|| anyhow!("{}: no outcome column", self.path.display()))?;
+        (0..names.len())
+            .map(|i| outcome_of(names.value(i), self.path))
+            .collect()
+    }
+}
+
+/// The number of legs of a sweep file with `schema` (its per-leg peak force columns).
+#[must_use]
+pub fn leg_count(schema: &arrow_schema::Schema) -> usize {
+    schema
+        .fields()
+        .iter()
+        .filter(|f| f.name().ends_with("_peak_normal_force_n"))
+        .count()
+}

@@ -1,0 +1,374 @@
+//! The sweep file's columns: inputs, results, legs, the control loop's and the drawn
+//! parameters', with their units and descriptions, and the provenance in its metadata.
+
+use crate::output::{ENGINE, field};
+use crate::scenario::INPUT_FIELDS;
+use crate::sweep::Shard;
+use arrow_schema::{DataType, Field, Schema, SchemaRef};
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+/// Provenance stored in the schema metadata.
+pub struct SweepInfo<'a> {
+    pub scenario_toml: &'a str,
+    pub seed: u64,
+    /// Samples of the whole sweep (of all its shards).
+    pub samples: u64,
+    pub lane_type: &'a str,
+    /// The slice of the sweep this file holds, if it is a shard.
+    pub shard: Option<Shard>,
+    /// The control loop's columns (`CONTROL_COLUMNS`) the file has: none without one.
+    pub control: &'a [&'static str],
+    /// The columns of the parameters drawn per sample (`PARAMETER_FIELDS`).
+    pub parameters: &'a [&'static str],
+    /// What the file says of the table of inputs the sweep ran (`scenario::METADATA_KEYS`);
+    /// empty without one.
+    pub table: &'a [(String, String)],
+    /// The table's columns passed through (`--keep-columns`), last.
+    pub kept: &'a [arrow_schema::FieldRef],
+}
+
+/// The names of the parameter columns (`PARAMETER_FIELDS`) a sweep of `scenario` writes:
+/// those it draws per sample.
+#[must_use]
+pub fn parameter_columns(scenario: &crate::scenario::Scenario) -> Vec<&'static str> {
+    crate::scenario::Parameter::ALL
+        .iter()
+        .filter(|p| scenario.sampled[**p as usize].is_some())
+        .map(|p| p.name())
+        .collect()
+}
+
+/// The columns of what a control loop did, and of its sampled law parameters: name, unit,
+/// description, and the law a parameter belongs to (empty: every control loop).
+pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 18] = [
+    (
+        "propellant_kg",
+        "kg",
+        "propellant used: thrust integral over Isp g0",
+        "",
+    ),
+    (
+        "thrust_on_time_s",
+        "s",
+        "sum of every thruster's time on",
+        "",
+    ),
+    (
+        "firings",
+        "1",
+        "thruster firings (a thruster on in a control period counts once)",
+        "",
+    ),
+    (
+        "hold_down_impulse_n_s",
+        "N s",
+        "thrust integral of the hold-down firings",
+        "",
+    ),
+    (
+        "hold_down_thrust_n",
+        "N",
+        "sampled law parameter: hold-down thrust",
+        "hold_down",
+    ),
+    (
+        "hold_down_duration_s",
+        "s",
+        "sampled law parameter: hold-down duration",
+        "hold_down",
+    ),
+    (
+        "attitude_kp_n_m_per_rad",
+        "N m/rad",
+        "sampled law parameter: attitude hold proportional gain",
+        "attitude_hold",
+    ),
+    (
+        "attitude_kd_n_m_s_per_rad",
+        "N m s/rad",
+        "sampled law parameter: attitude hold rate gain",
+        "attitude_hold",
+    ),
+    (
+        "descent_start_altitude_m",
+        "m",
+        "sampled law parameter: height of the lowest footpad at the descent's start",
+        "descent",
+    ),
+    (
+        "descent_start_speed_m_s",
+        "m/s",
+        "sampled law parameter: descent speed at the start, down Z_I",
+        "descent",
+    ),
+    (
+        "descent_braking_m_s2",
+        "m/s^2",
+        "sampled law parameter: braking of the descent's profile",
+        "descent",
+    ),
+    (
+        "descent_gain_per_s",
+        "1/s",
+        "sampled law parameter: the descent's approach-rate gain",
+        "descent",
+    ),
+    (
+        "descent_release_speed_m_s",
+        "m/s",
+        "sampled law parameter: approach rate below which the descent releases",
+        "descent",
+    ),
+    (
+        "release_time_s",
+        "s",
+        "when the descent law released the lander (NaN: contact came first)",
+        "descent",
+    ),
+    (
+        "release_altitude_m",
+        "m",
+        "true height of the footpads at release: CG altitude above the surface plane less \
+         the footpads' depth below the CG",
+        "descent",
+    ),
+    (
+        "release_vx_m_s",
+        "m/s",
+        "true CG velocity at release, X_I (the residual velocity of the descent)",
+        "descent",
+    ),
+    (
+        "release_vy_m_s",
+        "m/s",
+        "true CG velocity at release, Y_I",
+        "descent",
+    ),
+    (
+        "release_vz_m_s",
+        "m/s",
+        "true CG velocity at release, Z_I",
+        "descent",
+    ),
+];
+
+/// The names of the `CONTROL_COLUMNS` a sweep of `scenario` writes.
+#[must_use]
+pub fn control_columns(scenario: &crate::scenario::Scenario) -> Vec<&'static str> {
+    let Some(c) = &scenario.control else {
+        return Vec::new();
+    };
+    CONTROL_COLUMNS
+        .iter()
+        .filter(|(_, _, _, law)| match *law {
+            "hold_down" => c.hold_down.is_some(),
+            "attitude_hold" => c.attitude_hold.is_some(),
+            "descent" => c.descent.is_some(),
+            _ => true,
+        })
+        .map(|c| c.0)
+        .collect()
+}
+
+/// Schema metadata keys of a shard file (a whole sweep has neither).
+pub const SHARD_KEYS: [&str; 2] = ["touchdown.shard", "touchdown.sample_range"];
+
+/// The schema of a sweep of a lander with `legs` legs.
+#[must_use]
+pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
+    let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);
+    let mut fields = input_fields();
+    fields.extend(result_fields());
+    fields.extend(leg_fields(legs));
+    for (name, unit, description, _) in CONTROL_COLUMNS {
+        if info.control.contains(&name) {
+            let t = if name == "firings" {
+                DataType::UInt32
+            } else {
+                DataType::Float64
+            };
+            fields.push(f(name, t, unit, description));
+        }
+    }
+    for (name, unit) in crate::scenario::PARAMETER_FIELDS {
+        if info.parameters.contains(&name) {
+            fields.push(f(
+                name,
+                DataType::Float64,
+                unit,
+                "scenario parameter drawn per sample",
+            ));
+        }
+    }
+    fields.extend(info.kept.iter().map(|f| f.as_ref().clone()));
+    let meta = metadata(info);
+    Arc::new(Schema::new_with_metadata(fields, meta))
+}
+
+/// The fields of a sample's index, seed, inputs and terrain.
+fn input_fields() -> Vec<Field> {
+    let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);
+    let mut fields: Vec<Field> = vec![
+        f("sample", DataType::UInt64, "1", "sample index"),
+        f(
+            "sample_seed",
+            DataType::UInt64,
+            "1",
+            "seed of the sample's generator",
+        ),
+    ];
+    for (name, unit) in INPUT_FIELDS {
+        fields.push(f(name, DataType::Float64, unit, "sampled input"));
+    }
+    fields.extend([
+        f(
+            "terrain_tile",
+            DataType::UInt32,
+            "1",
+            "terrain tile (0 on a flat surface)",
+        ),
+        f(
+            "terrain_offset_u_m",
+            DataType::Float64,
+            "m",
+            "landing point offset in the tile, downhill axis",
+        ),
+        f(
+            "terrain_offset_v_m",
+            DataType::Float64,
+            "m",
+            "landing point offset in the tile, cross-slope axis",
+        ),
+    ]);
+    fields
+}
+
+/// The fields of a sample's results, up to the legs.
+fn result_fields() -> Vec<Field> {
+    let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);
+    vec![
+        f(
+            "outcome",
+            DataType::Utf8,
+            "1",
+            "stable, tipped, sliding, bouncing or diverged",
+        ),
+        f(
+            "decided_s",
+            DataType::Float64,
+            "s",
+            "time the outcome was decided (t_max for sliding and bouncing)",
+        ),
+        f("steps", DataType::UInt64, "1", "steps taken"),
+        f(
+            "final_tilt_deg",
+            DataType::Float64,
+            "deg",
+            "final tilt of Z_B from the slope normal",
+        ),
+        f(
+            "max_tilt_deg",
+            DataType::Float64,
+            "deg",
+            "largest tilt of Z_B from the slope normal",
+        ),
+        f(
+            "displacement_m",
+            DataType::Float64,
+            "m",
+            "distance the CG moved along the surface",
+        ),
+        f(
+            "peak_acceleration_m_s2",
+            DataType::Float64,
+            "m/s^2",
+            "peak contact acceleration of the CG (accelerometer reading)",
+        ),
+        f(
+            "peak_acceleration_z_body_m_s2",
+            DataType::Float64,
+            "m/s^2",
+            "peak contact acceleration along Z_B (instruments' shock)",
+        ),
+        f(
+            "bounces",
+            DataType::UInt32,
+            "1",
+            "lift-offs after the first contact",
+        ),
+        Field::new("first_contact_s", DataType::Float64, true).with_metadata(
+            [
+                ("unit", "s"),
+                (
+                    "description",
+                    "time of the first contact (null: never touched)",
+                ),
+            ]
+            .into_iter()
+            .collect::<arrow_schema::Metadata>(),
+        ),
+        f(
+            "max_penetration_m",
+            DataType::Float64,
+            "m",
+            "largest footpad penetration",
+        ),
+    ]
+}
+
+/// The fields of each leg's results.
+fn leg_fields(legs: usize) -> Vec<Field> {
+    let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);
+    let mut fields = Vec::with_capacity(3 * legs);
+    for k in 0..legs {
+        fields.push(f(
+            &format!("leg{k}_peak_normal_force_n"),
+            DataType::Float64,
+            "N",
+            "peak normal force",
+        ));
+        fields.push(f(
+            &format!("leg{k}_stroke_m"),
+            DataType::Float64,
+            "m",
+            "final damper stroke",
+        ));
+        fields.push(f(
+            &format!("leg{k}_absorbed_j"),
+            DataType::Float64,
+            "J",
+            "energy absorbed by the damper",
+        ));
+    }
+    fields
+}
+
+/// The provenance stored in the schema metadata: engine, kind, scenario, seed, samples,
+/// lane type, the table of inputs, and a shard's slice.
+fn metadata(info: &SweepInfo<'_>) -> BTreeMap<String, String> {
+    let mut meta = BTreeMap::from([
+        ("touchdown.engine".to_string(), ENGINE.to_string()),
+        ("touchdown.kind".to_string(), "sweep".to_string()),
+        (
+            "touchdown.scenario".to_string(),
+            info.scenario_toml.to_string(),
+        ),
+        ("touchdown.seed".to_string(), info.seed.to_string()),
+        ("touchdown.samples".to_string(), info.samples.to_string()),
+        (
+            "touchdown.lane_type".to_string(),
+            info.lane_type.to_string(),
+        ),
+    ]);
+    meta.extend(info.table.iter().cloned());
+    if let Some(shard) = info.shard {
+        let range = shard.range(info.samples);
+        meta.insert(SHARD_KEYS[0].to_string(), shard.to_string());
+        meta.insert(
+            SHARD_KEYS[1].to_string(),
+            format!("{}..{}", range.start, range.end),
+        );
+    }
+    meta
+}

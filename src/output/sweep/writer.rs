@@ -1,0 +1,230 @@
+//! The sweep file written as rows come, in batches of a fixed row count, under its name
+//! only when finished; and a rebatcher for files made of other files (merge, resume).
+
+use super::batch::batch;
+use super::schema::{SweepInfo, schema};
+use crate::output::format::{BATCH_ROWS, Format};
+use crate::output::{AtomicFile, ENGINE, IpcWriter, Out};
+use crate::sweep::Row;
+use arrow_array::RecordBatch;
+use arrow_schema::SchemaRef;
+use arrow_select::concat::concat_batches;
+use parquet::arrow::ArrowWriter;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The writer of the file's format.
+enum Writer {
+    Arrow(IpcWriter),
+    Parquet(ArrowWriter<Out>),
+}
+
+/// Writes rows as they come, in batches of `BATCH_ROWS`, to a file that appears under its
+/// name only after `finish`.
+pub struct SweepWriter {
+    path: std::path::PathBuf,
+    file: AtomicFile,
+    sink: Writer,
+    schema: SchemaRef,
+    legs: usize,
+    pending: Vec<Row>,
+    rows: u64,
+    /// The table of inputs whose columns pass through (`--keep-columns`).
+    table: Option<Arc<crate::scenario::InputTable>>,
+}
+
+impl SweepWriter {
+    /// Opens the temporary file for `path`.
+    pub fn create(
+        path: &Path,
+        format: Format,
+        legs: usize,
+        info: &SweepInfo<'_>,
+    ) -> anyhow::Result<SweepWriter> {
+        let schema = schema(legs, info);
+        let (file, out) = AtomicFile::create(path)?;
+        let sink = match format {
+            Format::Arrow => Writer::Arrow(IpcWriter::new(&file, out, &schema)?),
+            Format::Parquet => {
+                let props = parquet::file::properties::WriterProperties::builder()
+                    .set_compression(parquet::basic::Compression::SNAPPY)
+                    .set_max_row_group_row_count(Some(BATCH_ROWS))
+                    .set_created_by(ENGINE.to_string())
+                    .build();
+                Writer::Parquet(ArrowWriter::try_new(out, schema.clone(), Some(props))?)
+            }
+        };
+        Ok(SweepWriter {
+            path: path.to_path_buf(),
+            file,
+            sink,
+            schema,
+            legs,
+            pending: Vec::with_capacity(BATCH_ROWS),
+            rows: 0,
+            table: None,
+        })
+    }
+
+    /// Passes the kept columns of `table` (`SweepInfo::kept`) through, row by row.
+    #[must_use]
+    pub fn with_table(mut self, table: Option<Arc<crate::scenario::InputTable>>) -> SweepWriter {
+        self.table = table;
+        self
+    }
+
+    /// Takes rows in sample order; writes every full batch.
+    pub fn push(&mut self, rows: Vec<Row>) -> anyhow::Result<()> {
+        for row in rows {
+            self.pending.push(row);
+            if self.pending.len() == BATCH_ROWS {
+                self.flush()?;
+            }
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> anyhow::Result<()> {
+        if self.pending.is_empty() {
+            return Ok(());
+        }
+        let first = self.pending[0].sample.index;
+        debug_assert!(
+            self.pending
+                .iter()
+                .enumerate()
+                .all(|(i, r)| r.sample.index == first + i as u64),
+            "rows in sample order"
+        );
+        let kept = match &self.table {
+            Some(t) => t.kept_rows(first, self.pending.len())?,
+            None => Vec::new(),
+        };
+        let b = batch(&self.schema, self.legs, &self.pending, kept)?;
+        self.pending.clear();
+        self.write_batch(&b)
+    }
+
+    /// The schema every batch is written in.
+    #[must_use]
+    pub fn schema(&self) -> &SchemaRef {
+        &self.schema
+    }
+
+    /// Writes a whole batch as it is (for `merge`, which cuts its batches itself). Not to
+    /// be mixed with `push`.
+    pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
+        debug_assert!(self.pending.is_empty(), "write_batch after push");
+        let written = match &mut self.sink {
+            Writer::Arrow(w) => w.write(b).map_err(|e| e.to_string()),
+            Writer::Parquet(w) => w.write(b).map_err(|e| e.to_string()),
+        };
+        written.map_err(|e| self.write_error(&e))?;
+        self.rows += b.num_rows() as u64;
+        Ok(())
+    }
+
+    /// Writes the last batch, closes the file and gives it its name. Returns the row count.
+    pub fn finish(self) -> anyhow::Result<u64> {
+        Ok(self.close(None)?.0)
+    }
+
+    /// Writes the rows pushed so far and closes the file as a valid one, under the name of
+    /// an interrupted sweep (`OUT.interrupted`), not the final name. Returns the row count
+    /// and that path; `None` where the output is not a regular file (a device, a FIFO,
+    /// standard output): the rows went there, and nothing is made beside it.
+    pub fn finish_interrupted(self) -> anyhow::Result<(u64, Option<std::path::PathBuf>)> {
+        let path = crate::output::interrupted_path(self.path());
+        let (rows, made) = self.close(Some(&path))?;
+        Ok((rows, made.then_some(path)))
+    }
+
+    /// The path the sweep was asked to write.
+    fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// An error writing the file, naming it.
+    fn write_error(&self, e: &str) -> anyhow::Error {
+        anyhow::anyhow!(
+            "cannot write output file {}: {e}",
+            self.file.partial_path().display()
+        )
+    }
+
+    /// Writes the last rows and closes the file, renamed onto `name` instead of its final
+    /// path if given. Returns the row count, and whether `name` was made.
+    fn close(mut self, name: Option<&Path>) -> anyhow::Result<(u64, bool)> {
+        self.flush()?;
+        let out = match self.sink {
+            Writer::Arrow(w) => w.finish().map_err(|e| e.to_string()),
+            Writer::Parquet(w) => w.into_inner().map_err(|e| e.to_string()),
+        };
+        let out = out.map_err(|e| {
+            anyhow::anyhow!(
+                "cannot write output file {}: {e}",
+                self.file.partial_path().display()
+            )
+        })?;
+        let made = match name {
+            None => {
+                self.file.commit(out)?;
+                false
+            }
+            Some(path) => self.file.commit_as(out, path)?,
+        };
+        Ok((self.rows, made))
+    }
+}
+
+/// Cuts a stream of batches into batches of `BATCH_ROWS` rows (the last one shorter), as
+/// the sweep writes them, holding at most one batch's rows.
+pub struct Rebatcher {
+    schema: SchemaRef,
+    pieces: Vec<RecordBatch>,
+    rows: usize,
+}
+
+impl Rebatcher {
+    #[must_use]
+    pub fn new(schema: SchemaRef) -> Rebatcher {
+        Rebatcher {
+            schema,
+            pieces: Vec::new(),
+            rows: 0,
+        }
+    }
+
+    /// Takes the rows of `b` (columns as in the schema), writing every full batch.
+    pub fn push(&mut self, b: RecordBatch, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        // The same columns, under the schema of the whole sweep (no shard metadata).
+        let mut b = RecordBatch::try_new(self.schema.clone(), b.columns().to_vec())?;
+        while self.rows + b.num_rows() >= BATCH_ROWS {
+            let take = BATCH_ROWS - self.rows;
+            self.pieces.push(b.slice(0, take));
+            b = b.slice(take, b.num_rows() - take);
+            self.rows = 0;
+            self.write(writer)?;
+        }
+        if b.num_rows() > 0 {
+            self.rows += b.num_rows();
+            self.pieces.push(b);
+        }
+        Ok(())
+    }
+
+    /// Writes the rows left, if any.
+    pub fn finish(mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        if self.pieces.is_empty() {
+            return Ok(());
+        }
+        self.write(writer)
+    }
+
+    /// Writes the pieces as one batch of fresh (unsliced) arrays.
+    fn write(&mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        let whole = concat_batches(&self.schema, &self.pieces)?;
+        self.pieces.clear();
+        writer.write_batch(&whole)
+    }
+}

@@ -1,0 +1,230 @@
+//! One worker: a block of lanes and the samples they hold, refilled from a shared counter,
+//! stepped through the kernel (the hot loop) and through the control events.
+
+use super::lanes::{kernel_params, lane_summary, lane_thrust, lane_truth, sample_lane_init};
+use super::row::{LaneStats, Row};
+use crate::control::{ControlModel, LAW_MEMORY, LaneControl, LawCommand, Sensed};
+use crate::reference::Model;
+use crate::sampling;
+use crate::scenario::Sample;
+use crate::scenario::Scenario;
+use kernels::block::Block;
+use kernels::isa::Kernel;
+use kernels::lane::{Lane, MAX_LANES};
+use kernels::params::Params;
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+
+/// A value alone in its pair of cache lines: x86 cores fetch lines in pairs of 128 bytes,
+/// so a line that one thread writes slows the threads that read the other line of its pair
+/// as if they shared it (measured: 20 % of a two-thread sweep, when a counter the threads
+/// write sat beside the parameters they read at every step).
+#[repr(align(128))]
+pub(super) struct Padded<T>(pub(super) T);
+
+/// One block and the samples its lanes hold: a worker's state, kept from one window to the
+/// next so that a block never waits, half empty, for the last samples of a window. Aligned
+/// to 128 bytes: the workers of two threads sit side by side, and x86 cores fetch cache
+/// lines in pairs (see `kernels::block::LegLanes`).
+#[repr(align(128))]
+pub(super) struct Worker<L: Lane> {
+    block: Block<L>,
+    /// The parameters of each lane's sample, where the scenario draws parameters per sample
+    /// (`Scenario::sampled`); otherwise the block steps with the sweep's, shared by all.
+    own: Option<Params<L>>,
+    /// The sample of each lane (the first `L::LANES` used).
+    samples: [Option<Sample>; MAX_LANES],
+    /// The control loop of each lane's sample (scenarios with one).
+    control: [Option<LaneControl>; MAX_LANES],
+}
+
+/// The most steps a worker asks of the kernel at once: the kernel returns sooner when a
+/// lane is decided. Between calls the worker sees whether the window is complete, so a
+/// worker steps at most this many steps past it (a few milliseconds).
+const STEPS_PER_CALL: u32 = 256;
+
+/// Where a worker takes samples from, and when it may stop.
+pub(super) struct Feed<'a> {
+    /// Nonzero: take no more samples (the lanes finish the samples they hold).
+    pub(super) stop: &'a AtomicUsize,
+    /// The next sample index to take.
+    pub(super) next: &'a AtomicU64,
+    /// Samples from `next` up to here may be taken.
+    pub(super) cap: u64,
+    /// The end of the window being completed.
+    pub(super) window_end: u64,
+    /// Samples below `window_end` not yet decided, in all workers.
+    pub(super) outstanding: &'a AtomicU64,
+}
+
+impl Feed<'_> {
+    /// The next sample index, if one below `cap` is left.
+    fn take(&self) -> Option<u64> {
+        if self.stop.load(Ordering::Relaxed) != 0 {
+            return None;
+        }
+        self.next
+            .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |n| {
+                (n < self.cap).then_some(n + 1)
+            })
+            .ok()
+    }
+}
+
+impl<K: Kernel> Worker<K> {
+    pub(super) fn new(params: &Params<K>, per_sample: bool) -> Worker<K> {
+        Worker {
+            block: Block::new(params),
+            own: per_sample.then(|| params.clone()),
+            samples: [None; MAX_LANES],
+            control: std::array::from_fn(|_| None),
+        }
+    }
+
+    /// Puts the next sample of `feed` into lane `i`, or empties the lane if none is left.
+    fn refill(&mut self, scenario: &Scenario, model: &Model, feed: &Feed, i: usize) {
+        if let Some(index) = feed.take() {
+            let s = sampling::sample(scenario, index);
+            // The sample's own model, made once for its parameters and its initial state.
+            let own_model = model.for_sample(&s);
+            if let Some(own) = &mut self.own {
+                own.copy_lane(i, &kernel_params(&own_model));
+            }
+            self.block.load(i, &sample_lane_init(&own_model, &s));
+            self.samples[i] = Some(s);
+            if let Some(m) = &model.control {
+                let mut c = LaneControl::new(m, &s);
+                let truth = lane_truth(&self.block, i, false);
+                self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
+                self.control[i] = Some(c);
+            }
+        } else {
+            self.block.retire(i);
+            self.samples[i] = None;
+        }
+    }
+
+    /// The control events of the lanes of `events` (lane `i` in bit `i`): each lane's loop
+    /// takes in its event and sets its thrust until the next; the lanes at a control
+    /// instant whose loop runs the user's law are handed to it together.
+    fn control_events(&mut self, m: &ControlModel, events: u32) {
+        let mut truths = [None; MAX_LANES];
+        let mut asking = [0usize; MAX_LANES];
+        let mut sensed = [None; MAX_LANES];
+        let mut count = 0;
+        for i in (0..K::LANES).filter(|i| events & (1 << i) != 0) {
+            let contact = self
+                .block
+                .leg_step
+                .iter()
+                .any(|l| l.penetration_m.lane(i) > 0.0);
+            let truth = lane_truth(&self.block, i, contact);
+            let c = self.control[i]
+                .as_mut()
+                .expect("a lane with events has a loop");
+            if let Some(s) = c.begin(m, &truth) {
+                asking[count] = i;
+                sensed[count] = Some(s);
+                count += 1;
+            }
+            truths[i] = Some(truth);
+        }
+        let mut commands = [LawCommand::default(); MAX_LANES];
+        if count > 0
+            && let Some(law) = &m.law
+        {
+            let readings: [Sensed; MAX_LANES] =
+                std::array::from_fn(|k| sensed[k].unwrap_or(sensed[0].expect("one asks")));
+            let mut memory = [[0.0; LAW_MEMORY]; MAX_LANES];
+            for (k, &i) in asking[..count].iter().enumerate() {
+                memory[k] = *self.control[i]
+                    .as_mut()
+                    .expect("asking lanes have a loop")
+                    .memory();
+            }
+            law.law.command(
+                &readings[..count],
+                &mut memory[..count],
+                &mut commands[..count],
+            );
+            for (k, &i) in asking[..count].iter().enumerate() {
+                *self.control[i]
+                    .as_mut()
+                    .expect("asking lanes have a loop")
+                    .memory() = memory[k];
+            }
+        }
+        for i in (0..K::LANES).filter(|i| events & (1 << i) != 0) {
+            let truth = truths[i].expect("every event lane has its truth");
+            let user = asking[..count]
+                .iter()
+                .position(|&a| a == i)
+                .map(|k| &commands[k]);
+            let c = self.control[i]
+                .as_mut()
+                .expect("a lane with events has a loop");
+            self.block
+                .set_thrust(i, &lane_thrust(&c.end(m, &truth, user)));
+        }
+    }
+
+    /// Steps the block, refilling lanes from `feed`, until every sample below
+    /// `feed.window_end` is decided (in this worker or another), or until this block is
+    /// empty and nothing is left to take. Lanes may hold samples of the next window when it
+    /// returns; their rows come with a later call. Rows in no particular order.
+    pub(super) fn run(
+        &mut self,
+        scenario: &Scenario,
+        model: &Model,
+        params: &Params<K>,
+        feed: &Feed,
+    ) -> (Vec<Row>, LaneStats) {
+        let mut rows = Vec::new();
+        let mut stats = LaneStats::default();
+        for i in 0..K::LANES {
+            if self.samples[i].is_none() {
+                self.refill(scenario, model, feed, i);
+            }
+        }
+        while feed.outstanding.load(Ordering::Relaxed) > 0 {
+            let busy = self.block.busy_lanes() as u64;
+            if busy == 0 {
+                break;
+            }
+            // The lanes change only between calls (a decision stops the kernel), so `busy`
+            // holds for every step of one.
+            let params = self.own.as_ref().unwrap_or(params);
+            let advanced = K::advance(params, &mut self.block, STEPS_PER_CALL);
+            stats.busy_lane_steps += busy * u64::from(advanced.steps);
+            stats.lane_steps += K::LANES as u64 * u64::from(advanced.steps);
+            let (decided, far) = (advanced.bits & 0xffff, advanced.bits >> 16);
+            if far != 0 {
+                for i in (0..K::LANES).filter(|i| far & (1 << i) != 0) {
+                    self.block.recentre(i);
+                }
+            }
+            if decided != 0 {
+                for i in 0..K::LANES {
+                    if decided & (1 << i) != 0 {
+                        let sample = self.samples[i].expect("a decided lane holds a sample");
+                        if sample.index < feed.window_end {
+                            feed.outstanding.fetch_sub(1, Ordering::Relaxed);
+                        }
+                        let mut summary = lane_summary(&self.block, i);
+                        if let (Some(m), Some(c)) = (&model.control, &mut self.control[i]) {
+                            let left = self.block.thrust.event_in_s.lane(i);
+                            summary.control = Some(Box::new(c.finish(m, left)));
+                        }
+                        rows.push(Row { sample, summary });
+                        self.refill(scenario, model, feed, i);
+                    }
+                }
+            }
+            if advanced.events != 0
+                && let Some(m) = &model.control
+            {
+                self.control_events(m, advanced.events);
+            }
+        }
+        (rows, stats)
+    }
+}
