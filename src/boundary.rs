@@ -21,7 +21,9 @@ use crate::stats::{Allowable, MIN_SAMPLES, allowable_of_counts};
 /// distribution conditioned on `[slope_min, upper_deg]`, and whether each was stable.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Round {
+    /// The upper end of the slopes this round drew, deg (the lower end is `slope_min`).
     pub upper_deg: f64,
+    /// Each sample's slope, deg, and whether its outcome was stable.
     pub samples: Vec<(f64, bool)>,
 }
 

@@ -47,15 +47,15 @@ fn read(path: &Path) -> anyhow::Result<Outcomes> {
 /// `gained` have it in B only and `lost` in A only; and its 95 % half-widths, paired (from
 /// the per-sample differences) and as if the sweeps were independent.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Difference {
-    pub difference: f64,
-    pub paired_half_width: f64,
-    pub independent_half_width: f64,
+struct Difference {
+    difference: f64,
+    paired_half_width: f64,
+    independent_half_width: f64,
 }
 
 /// See `Difference`: `a` and `b` are the samples with the outcome in A and in B.
 #[must_use]
-pub fn difference(n: u64, a: u64, b: u64, gained: u64, lost: u64) -> Difference {
+fn difference(n: u64, a: u64, b: u64, gained: u64, lost: u64) -> Difference {
     let n = n as f64;
     let (pa, pb) = (a as f64 / n, b as f64 / n);
     let d = pb - pa;

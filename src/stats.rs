@@ -49,11 +49,17 @@ pub enum Allowable {
     /// No slope with at least `MIN_SAMPLES` samples at or below it has `ALLOWABLE_STABLE`
     /// of them stable; `below_deg` bounds the true allowable slope with 95 % confidence
     /// (it may be none at all).
-    NoSlope { below_deg: f64 },
+    NoSlope {
+        /// The 95 % upper bound of the allowable slope, deg.
+        below_deg: f64,
+    },
     /// The allowable slope, and its 95 % interval.
     Slope {
+        /// The allowable slope, deg.
         slope_deg: f64,
+        /// The low end of its 95 % interval, deg.
         low_deg: f64,
+        /// The high end of its 95 % interval, deg.
         high_deg: f64,
     },
 }

@@ -20,9 +20,13 @@ use std::sync::Arc;
 /// A key and the values it takes (`--vary KEY=MIN:MAX:COUNT`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Vary {
+    /// The scenario key, its tables' names joined by dots (`lander.footpad_radius_m`).
     pub key: String,
+    /// The first value, in the key's units.
     pub min: f64,
+    /// The last value, in the key's units.
     pub max: f64,
+    /// How many values, evenly spaced from `min` to `max` (1 to 1000).
     pub count: usize,
 }
 
@@ -122,19 +126,27 @@ impl Vary {
 
 /// What the table, its Markdown and its picture say about the study.
 pub struct About<'a> {
+    /// The varied key (`Vary::key`).
     pub key: &'a str,
+    /// The key and its values.
     pub vary: &'a Vary,
     /// The scenario file, as the command line named it.
     pub scenario: String,
+    /// The seed of every value's sweep.
     pub seed: u64,
+    /// Samples per value.
     pub samples: u64,
+    /// The base scenario's TOML text, its seed applied.
     pub base_text: &'a str,
 }
 
 /// One value's line of the table.
 pub struct Row {
+    /// The varied key's value.
     pub value: f64,
+    /// The value's sweep file.
     pub file: PathBuf,
+    /// Samples of the value's sweep.
     pub samples: u64,
     /// Samples per outcome, in the order of `Outcome::ALL`.
     pub counts: [u64; Outcome::ALL.len()],

@@ -30,21 +30,28 @@ const MIN_SCALE_DEG: f64 = 1e-3;
 pub enum SlopeDistribution {
     /// Bins `[min, max)` with their probabilities (summing to 1), uniform within a bin.
     Bins(Vec<(f64, f64, f64)>),
+    /// Uniform on `[min, max]`.
     Uniform {
+        /// The smallest slope, deg.
         min: f64,
+        /// The largest slope, deg.
         max: f64,
     },
     /// Normal, truncated to [0, 90).
     Normal {
+        /// Mean before truncation, deg.
         mean: f64,
+        /// Standard deviation before truncation, deg.
         sd: f64,
     },
     /// Rayleigh of scale `sigma` (its mode), truncated to [0, 90).
     Rayleigh {
+        /// Scale before truncation, deg.
         sigma: f64,
     },
     /// Exponential of mean `mean`, truncated to [0, 90).
     Exponential {
+        /// Mean before truncation, deg.
         mean: f64,
     },
 }
@@ -326,8 +333,11 @@ fn sampling_density(scenario: &Scenario) -> anyhow::Result<(Density, f64, f64)> 
 /// A share on the terrain: its estimate and 95 % interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Share {
+    /// The weighted share: `sum w_i y_i / sum w_i`.
     pub p: f64,
+    /// The low end of its 95 % interval.
     pub low: f64,
+    /// The high end of its 95 % interval.
     pub high: f64,
     /// The standard error by the delta method.
     pub se: f64,
@@ -340,6 +350,7 @@ pub struct Weighted {
     pub shares: Vec<Share>,
     /// Kish's effective sample size, `(sum w)^2 / sum w^2`.
     pub effective_samples: f64,
+    /// Samples of the sweep weighed.
     pub samples: usize,
     /// The terrain's probability of slopes outside the sweep's range.
     pub uncovered: f64,

@@ -2,7 +2,6 @@
 //! arrays, by fixed-step kernels over the SIMD type of `lane`. No I/O, no threads, no
 //! allocation per step. The scalar reference model in the `touchdown` crate has the same
 //! modules with the same names, in the same order, for reading side by side.
-#![warn(missing_docs)]
 
 pub mod block;
 pub mod contact;

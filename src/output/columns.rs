@@ -13,10 +13,15 @@ use std::path::Path;
 /// outcome column (as indices into `Outcome::ALL`) when the file has one, and the other
 /// text columns (a trace's control phase).
 pub struct Table {
+    /// The schema metadata (the file's provenance, `touchdown.*` keys).
     pub meta: HashMap<String, String>,
+    /// The numeric columns kept, by name, as `f64` (nulls as NaN).
     pub columns: HashMap<String, Vec<f64>>,
+    /// Each row's outcome, as an index into `Outcome::ALL`; empty without an outcome column.
     pub outcome: Vec<u8>,
+    /// The other text columns kept, by name (a trace's control phase).
     pub texts: HashMap<String, Vec<String>>,
+    /// Rows in the file.
     pub rows: usize,
 }
 

@@ -43,7 +43,9 @@ struct ShardFile {
 
 /// What `merge` did.
 pub struct Merged {
+    /// Shard files joined.
     pub shards: usize,
+    /// Rows written: the samples of the whole sweep.
     pub rows: u64,
 }
 

@@ -15,13 +15,19 @@ use std::path::{Path, PathBuf};
 
 /// An interrupted sweep, as its file describes it.
 pub struct Interrupted {
+    /// The interrupted file (`OUT.interrupted`).
     pub path: PathBuf,
+    /// Its format, Arrow IPC or Parquet.
     pub format: Format,
+    /// The scenario's TOML text, as the sweep ran it.
     pub scenario_toml: String,
+    /// The sweep's seed.
     pub seed: u64,
     /// Samples of the whole sweep.
     pub samples: u64,
+    /// The slice of the sweep it holds, if it is a shard.
     pub shard: Option<Shard>,
+    /// The kernel arithmetic it ran (`f64x8-fma`, `f64x8-nofma`, `f32x16-fma` or `f32x16-nofma`), which the resumed sweep must run too.
     pub lane_type: String,
     /// Rows in the file: samples `first..first + rows` of the sweep.
     pub rows: u64,

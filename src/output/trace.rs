@@ -373,9 +373,13 @@ const SENSED_COLUMNS: usize = 12;
 
 /// Provenance and results stored in the schema metadata of a trace.
 pub struct TraceInfo<'a> {
+    /// The scenario's TOML text.
     pub scenario_toml: &'a str,
+    /// The seed of the sweep the sample belongs to (the scenario's seed).
     pub sweep_seed: u64,
+    /// The sample run: its drawn inputs.
     pub sample: &'a Sample,
+    /// The sample's results from the reference model.
     pub summary: &'a Summary,
     /// The table of inputs the sample's row came from, if any.
     pub table: Option<&'a crate::scenario::InputTable>,

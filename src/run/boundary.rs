@@ -32,9 +32,13 @@ const DRAWS_PER_WANTED: u64 = 64;
 
 /// One sector's search.
 pub struct Sector {
+    /// Its rounds so far, in order.
     pub rounds: Vec<Round>,
+    /// Samples it has run, over all its rounds.
     pub used: u64,
+    /// Its allowable slope pooled over the rounds, with the 95 % interval.
     pub allowable: Allowable,
+    /// Why its search stopped; `None` while it goes on.
     pub stop: Option<Stop>,
 }
 

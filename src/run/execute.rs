@@ -11,7 +11,9 @@ use std::ops::Range;
 /// How `execute` runs a plan: on which pool, stopped by which signal flag
 /// (`stop_on_signals`), and what it shows on stderr.
 pub struct RunOptions<'a> {
+    /// The worker threads (`worker_pool`).
     pub pool: &'a rayon::ThreadPool,
+    /// The signal that asks the run to stop, 0 before one arrives (`stop_on_signals`).
     pub stop: &'a std::sync::Arc<std::sync::atomic::AtomicUsize>,
     /// A progress bar (when stderr is a terminal).
     pub progress: bool,
@@ -27,10 +29,13 @@ pub struct Executed {
     pub rows: u64,
     /// Samples computed by this run.
     pub computed: u64,
+    /// Wall-clock time of this run, s.
     pub wall_s: f64,
+    /// How busy the kernel's lanes were.
     pub stats: crate::sweep::LaneStats,
     /// Rows per outcome, in the order of `Outcome::ALL`.
     pub counts: [u64; Outcome::ALL.len()],
+    /// Time steps summed over the rows in the file (kept and computed).
     pub steps: u64,
     /// Samples of this run that never touched the surface.
     pub untouched: u64,

@@ -23,23 +23,32 @@ pub struct SweepSettings {
     pub inputs: Option<PathBuf>,
     /// Pass the table's other columns through.
     pub keep_columns: bool,
+    /// The sweep file to write.
     pub out: PathBuf,
     /// The format asked for (default: from the extension of `out`).
     pub format: Option<Format>,
     /// The interrupted sweep to finish (its `out`); the settings above but `inputs` and
     /// `kernel` are then the interrupted sweep's.
     pub resume: Option<PathBuf>,
+    /// The slice of the sweep to run (`--shard K/N`).
     pub shard: Option<Shard>,
+    /// The kernel to run with (`--kernel`).
     pub kernel: KernelChoice,
 }
 
 /// What a sweep runs: its settings, and where it starts when it resumes.
 pub struct SweepPlan {
+    /// The scenario, with the command line's seed and design applied.
     pub scenario: Scenario,
+    /// Its TOML text, as the file's metadata stores it.
     pub text: String,
+    /// Samples of the whole sweep (of all its shards).
     pub samples: u64,
+    /// The slice of the sweep it runs, if it is a shard.
     pub shard: Option<Shard>,
+    /// The format of the file.
     pub format: crate::output::format::Format,
+    /// The sweep file it writes (under `OUT.interrupted` if a signal stops it).
     pub out: PathBuf,
     /// The kernel it runs with (the precision is the scenario's).
     pub kernel: KernelKind,

@@ -38,9 +38,11 @@ pub struct StudySettings {
     pub format: Format,
     /// The slice of every value's samples to run.
     pub shard: Option<Shard>,
+    /// Worker threads (default: one per core).
     pub threads: Option<usize>,
     /// No progress bar, no banner.
     pub quiet: bool,
+    /// The kernel every value's sweep runs with (`--kernel`).
     pub kernel: KernelChoice,
 }
 
@@ -110,8 +112,11 @@ fn parent_table<'t>(table: &'t mut toml::Table, key: &str) -> anyhow::Result<&'t
 
 /// One value of the study: its scenario and its sweep file.
 pub struct Point {
+    /// The varied key's value.
     pub value: f64,
+    /// The base scenario's TOML text with the key set to `value`.
     pub text: String,
+    /// The scenario that text reads as.
     pub scenario: Scenario,
     /// The complete sweep of this value.
     pub file: PathBuf,
@@ -273,6 +278,7 @@ fn step_of(point: &Point, samples: u64, shard: Option<Shard>) -> anyhow::Result<
 
 /// What a study's runs leave: its values and their files, and a line per value.
 pub struct Study {
+    /// The values, in the order of `Vary::values`, with their sweep files.
     pub points: Vec<Point>,
     /// Samples per value.
     pub samples: u64,

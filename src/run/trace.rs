@@ -30,8 +30,11 @@ pub struct TraceSettings {
 
 /// What a trace ran and wrote.
 pub struct Traced {
+    /// The scenario the sample was drawn from.
     pub scenario: Scenario,
+    /// The sample run: its drawn inputs.
     pub sample: Sample,
+    /// The sample's results from the reference model.
     pub summary: Summary,
     /// Rows written.
     pub rows: u64,

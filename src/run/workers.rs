@@ -11,6 +11,7 @@ pub const CHUNK: u64 = 1024;
 pub struct Interrupted {
     /// The exit code: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
     pub code: u8,
+    /// What stopped the sweep, where its rows are and how to continue it.
     pub message: String,
 }
 

@@ -24,7 +24,9 @@ pub struct Analysis {
     pub base_points: usize,
     /// Rows in the file.
     pub rows: u64,
+    /// The sweep's seed, which also seeds the bootstrap.
     pub seed: u64,
+    /// Bootstrap replicates asked for per output.
     pub bootstrap: usize,
 }
 

@@ -19,6 +19,7 @@ pub struct Outputs<'a> {
 /// One index: its estimate on all base points and its 95 % bootstrap interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Index {
+    /// The index estimated on all base points.
     pub estimate: f64,
     /// 2.5 percentile of the bootstrap replicates (NaN if no replicate had any variance).
     pub low: f64,
@@ -43,7 +44,9 @@ pub struct Indices {
 /// Which outputs of the design a value belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Matrix {
+    /// y on the rows of A.
     A,
+    /// y on the rows of B (from which each AB_i takes its column).
     B,
     /// AB_i, by the input's position in `Outputs::ab` (from 0).
     Ab(usize),
@@ -62,22 +65,33 @@ impl fmt::Display for Matrix {
 /// Why no indices can be estimated from some outputs.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SensitivityError {
+    /// y_A is empty: no base points.
     #[error("no base points: y_A is empty")]
     NoSamples,
+    /// `Outputs::ab` is empty: no inputs.
     #[error("no inputs: there is no y_AB_i")]
     NoInputs,
+    /// Zero bootstrap replicates asked for.
     #[error("no bootstrap replicates asked for")]
     NoReplicates,
+    /// A vector of outputs whose length differs from y_A's.
     #[error("y_{matrix} has length {len}, y_A has {expected}")]
     Length {
+        /// The vector's matrix.
         matrix: Matrix,
+        /// Its length.
         len: usize,
+        /// The length of y_A: the base points.
         expected: usize,
     },
+    /// An output that is NaN or infinite.
     #[error("y_{matrix}[{row}] is {value}: every output must be finite")]
     NonFinite {
+        /// The output's matrix.
         matrix: Matrix,
+        /// Its row in that matrix (the base point).
         row: usize,
+        /// The value.
         value: f64,
     },
 }

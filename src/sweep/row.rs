@@ -6,7 +6,9 @@ use crate::scenario::Sample;
 /// One finished sample: its inputs and its results.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row {
+    /// The sample's drawn inputs.
     pub sample: Sample,
+    /// Its results (outcome, peaks, time steps).
     pub summary: Summary,
 }
 

@@ -14,6 +14,7 @@ use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ran {
+    /// How busy the kernel's lanes were.
     pub stats: LaneStats,
     /// The first sample not handed to the sink: the end of the range, or where a stop left
     /// the rows (every sample before it was handed on, none after).

@@ -6,7 +6,9 @@ use std::ops::Range;
 /// Slurm array numbers its tasks: 0 to `count - 1`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shard {
+    /// This slice's number, from 0.
     pub index: u64,
+    /// How many slices the sweep is cut into.
     pub count: u64,
 }
 

@@ -10,10 +10,13 @@ use std::sync::Arc;
 
 /// Provenance stored in the schema metadata.
 pub struct SweepInfo<'a> {
+    /// The scenario's TOML text, as the sweep ran it.
     pub scenario_toml: &'a str,
+    /// The sweep's seed.
     pub seed: u64,
     /// Samples of the whole sweep (of all its shards).
     pub samples: u64,
+    /// The kernel arithmetic (`f64x8-fma`, `f64x8-nofma`, `f32x16-fma` or `f32x16-nofma`).
     pub lane_type: &'a str,
     /// The slice of the sweep this file holds, if it is a shard.
     pub shard: Option<Shard>,

@@ -186,6 +186,7 @@ pub struct Rebatcher {
 }
 
 impl Rebatcher {
+    /// An empty rebatcher of batches with `schema`.
     #[must_use]
     pub fn new(schema: SchemaRef) -> Rebatcher {
         Rebatcher {
