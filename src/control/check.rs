@@ -3,18 +3,32 @@
 
 use super::allocation::{Allocation, PURE_TOLERANCE};
 use super::laws::{registered, registered_names};
-use crate::scenario::{Scenario, ScenarioError, Start};
+use crate::scenario::{Control, Scenario, ScenarioError, Start};
 
 /// Refuses a control loop that cannot work: one without thrusters or without a law, a
 /// hold-down the thrusters cannot push pure along `-Z_B` (or not as hard as asked), an
 /// attitude hold they cannot turn about `X_B` and `Y_B`, a descent they cannot brake, or a
 /// descent start without a descent law (and the other way round).
 pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
-    let invalid = |key: &str, value: String, allowed: String| ScenarioError::Invalid {
+    check_descent_start(s)?;
+    let Some(c) = &s.control else {
+        return Ok(());
+    };
+    check_law(s, c)?;
+    check_thrust(s, c)
+}
+
+/// An invalid value of `key`.
+fn invalid(key: &str, value: String, allowed: String) -> ScenarioError {
+    ScenarioError::Invalid {
         key: key.to_string(),
         value,
         allowed,
-    };
+    }
+}
+
+/// Refuses a descent start without a descent law, and the other way round.
+fn check_descent_start(s: &Scenario) -> Result<(), ScenarioError> {
     let descent = s.control.as_ref().and_then(|c| c.descent);
     let descent_start = s.initial.start == Start::Descent;
     if descent_start && descent.is_none() {
@@ -35,9 +49,12 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
                 .into(),
         ));
     }
-    let Some(c) = &s.control else {
-        return Ok(());
-    };
+    Ok(())
+}
+
+/// Refuses a loop without thrusters, without a law, with both a law of the user's and the
+/// built-in ones, or naming a law this program does not register.
+fn check_law(s: &Scenario, c: &Control) -> Result<(), ScenarioError> {
     if s.thrusters.is_empty() {
         return Err(invalid(
             "control",
@@ -87,6 +104,12 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
                 .into(),
         ));
     }
+    Ok(())
+}
+
+/// Refuses a descent the thrusters cannot brake, a hold-down they cannot push pure along
+/// `-Z_B` (or not as hard as asked), an attitude hold they cannot turn about `X_B` and `Y_B`.
+fn check_thrust(s: &Scenario, c: &Control) -> Result<(), ScenarioError> {
     let allocation = Allocation::new(&s.thrusters);
     if let Some(d) = &c.descent {
         // Braking at `braking_m_s2` against gravity, upright: along +Z_B, pure.

@@ -175,17 +175,33 @@ impl Scenario {
     }
 }
 
+/// An invalid value of `key`.
+fn invalid(key: &str, value: String, allowed: String) -> ScenarioError {
+    ScenarioError::Invalid {
+        key: key.to_string(),
+        value,
+        allowed,
+    }
+}
+
+/// A vector as the messages show it, `[x, y, z]`.
+fn show(v: [f64; 3]) -> String {
+    format!("[{}, {}, {}]", v[0], v[1], v[2])
+}
+
 impl Scenario {
     /// Refuses set-ups that defeat themselves: a lander that cannot stand on its legs, dampers
     /// that can never stroke, a hold time no run can reach, no gravity, or a run too short
     /// for the lander to reach the surface.
     fn check_can_land(&self) -> Result<(), ScenarioError> {
-        let invalid = |key: &str, value: String, allowed: String| ScenarioError::Invalid {
-            key: key.to_string(),
-            value,
-            allowed,
-        };
-        let show = |v: [f64; 3]| format!("[{}, {}, {}]", v[0], v[1], v[2]);
+        self.check_can_stand()?;
+        self.check_dampers_stroke()?;
+        self.check_can_reach()
+    }
+
+    /// Refuses footpads at or above the CG, fewer than three off one line, or around a CG
+    /// outside their support polygon.
+    fn check_can_stand(&self) -> Result<(), ScenarioError> {
         let tips = self.lander.tips_m();
         let tips_key = match self.lander.geometry {
             Geometry::Regular { .. } => "lander.cg_height_m",
@@ -226,6 +242,11 @@ impl Scenario {
                     .into(),
             ));
         }
+        Ok(())
+    }
+
+    /// Refuses damper struts that do not point down (they would never stroke).
+    fn check_dampers_stroke(&self) -> Result<(), ScenarioError> {
         if self.damper.enabled {
             let axes: Vec<[f64; 3]> = match &self.damper.strut_axes {
                 StrutAxes::All(a) => vec![*a],
@@ -245,6 +266,12 @@ impl Scenario {
                 ));
             }
         }
+        Ok(())
+    }
+
+    /// Refuses a hold time longer than the run, no gravity, and a run too short for the
+    /// nominal touchdown to reach the surface.
+    fn check_can_reach(&self) -> Result<(), ScenarioError> {
         if self.outcome.hold_time_s > self.simulation.t_max_s {
             return Err(invalid(
                 "outcome.hold_time_s",
