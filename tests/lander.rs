@@ -89,3 +89,12 @@ pub(crate) fn tipping_slope_between(
     }
     0.5 * (stays + falls)
 }
+
+/// Inputs of a slope with its downhill azimuth, nothing else.
+pub(crate) fn on_slope(slope_deg: f64, downhill_azimuth_deg: f64) -> Inputs<f64> {
+    Inputs {
+        slope_deg,
+        downhill_azimuth_deg,
+        ..quiet()
+    }
+}

@@ -1,8 +1,8 @@
 //! Hold-down at rest: the legs bear the weight's normal component plus the thrust.
 
-use super::{Sim, constant_thrust, on_slope};
+use super::{Sim, constant_thrust};
 use crate::common::Table;
-use crate::lander::{regular, standing};
+use crate::lander::{on_slope, regular, standing};
 use glam::DVec3;
 
 /// Settling time before each measurement of the hold-down test, s.

@@ -42,15 +42,6 @@ fn posed(attitude_deg: [f64; 3], velocity_m_s: [f64; 3], rates_deg_s: [f64; 3]) 
     }
 }
 
-/// Inputs of a slope with its downhill azimuth, nothing else.
-fn on_slope(slope_deg: f64, downhill_azimuth_deg: f64) -> Inputs<f64> {
-    Inputs {
-        slope_deg,
-        downhill_azimuth_deg,
-        ..quiet()
-    }
-}
-
 /// A constant thrust (force and moment in B) with no control event to come.
 fn constant_thrust(force_b_n: DVec3, moment_b_n_m: DVec3) -> Thrust {
     Thrust {

@@ -1,9 +1,9 @@
 //! Static tipping limit under hold-down thrust: the thrust raises it to the closed form
 //! `thrust_limit_deg`.
 
-use super::{Sim, constant_thrust, on_slope};
+use super::{Sim, constant_thrust};
 use crate::common::Table;
-use crate::lander::{FALL_WITHIN_S, Facing, regular, standing, tipping_slope_between};
+use crate::lander::{FALL_WITHIN_S, Facing, on_slope, regular, standing, tipping_slope_between};
 use glam::DVec3;
 use touchdown::scenario::Scenario;
 

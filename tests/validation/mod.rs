@@ -6,7 +6,7 @@
 //! fails if any row failed, so that `cargo test --release --test tests validation --
 //! --nocapture` shows every number, passing or not.
 
-use crate::lander::{quiet, sample_of};
+use crate::lander::{on_slope, quiet, sample_of};
 use glam::{DMat3, DVec3};
 use touchdown::reference::step::{step, step_size};
 use touchdown::reference::{Model, State, StepReport, Summary, initial_state, run};
@@ -33,15 +33,6 @@ fn moving(velocity_m_s: [f64; 3], rates_deg_s: [f64; 3]) -> Inputs<f64> {
         rate_x_deg_s: rates_deg_s[0],
         rate_y_deg_s: rates_deg_s[1],
         rate_z_deg_s: rates_deg_s[2],
-        ..quiet()
-    }
-}
-
-/// Inputs of a slope with its downhill azimuth, nothing else.
-fn on_slope(slope_deg: f64, downhill_azimuth_deg: f64) -> Inputs<f64> {
-    Inputs {
-        slope_deg,
-        downhill_azimuth_deg,
         ..quiet()
     }
 }

@@ -1,9 +1,9 @@
 //! Sliding (MODEL.md sections 5 and 12): the lander holds below the friction limit and
 //! slides with the Coulomb acceleration above it.
 
-use super::{Sim, classify, on_slope, stand};
+use super::{Sim, classify, stand};
 use crate::common::Table;
-use crate::lander::{regular, standing};
+use crate::lander::{on_slope, regular, standing};
 use touchdown::reference::Outcome;
 
 #[test]

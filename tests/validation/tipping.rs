@@ -1,9 +1,11 @@
 //! Static tipping on a slope (MODEL.md sections 8 and 12): the closed-form limit of regular
 //! gears, and of the default gear.
 
-use super::{classify, on_slope, stand};
+use super::{classify, stand};
 use crate::common::Table;
-use crate::lander::{CG_HEIGHT_M, FALL_WITHIN_S, Facing, regular, standing, tipping_slope_between};
+use crate::lander::{
+    CG_HEIGHT_M, FALL_WITHIN_S, Facing, on_slope, regular, standing, tipping_slope_between,
+};
 use std::f64::consts::PI;
 use touchdown::reference::Outcome;
 
