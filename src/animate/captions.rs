@@ -9,6 +9,22 @@ use crate::scene::Pose;
 use glam::DVec3;
 use plotters::prelude::*;
 
+/// Text `t` at pixel `at` in the captions' font, of `size` and `colour`.
+fn text_at(
+    root: &Area<'_>,
+    t: &str,
+    at: (i32, i32),
+    size: f64,
+    colour: RGBColor,
+) -> anyhow::Result<()> {
+    root.draw(&Text::new(
+        t.to_string(),
+        at,
+        (FONT, size).into_font().color(&colour),
+    ))
+    .map_err(drawing)
+}
+
 impl View<'_> {
     /// The captions (what the sample is, the time, tilt and phase, the playback speed,
     /// the outcome once decided), a scale bar and the axes of I.
@@ -23,14 +39,7 @@ impl View<'_> {
         let colour = outcome.map_or(INK, |o| OUTCOME[o as usize]);
         let big = (self.height / 30.0).clamp(11.0, 22.0);
         let small = (big * 0.8).max(10.0);
-        let text = |t: &str, at: (i32, i32), size: f64, colour: RGBColor| {
-            root.draw(&Text::new(
-                t.to_string(),
-                at,
-                (FONT, size).into_font().color(&colour),
-            ))
-            .map_err(drawing)
-        };
+        let text = |t: &str, at, size, colour| text_at(root, t, at, size, colour);
         let pad = (big * 0.5) as i32;
         // The captions on a veil, so that the trail or ground under them does not hide them;
         // wide enough for the longest second line (the same in every frame).
@@ -106,14 +115,7 @@ impl View<'_> {
         small: f64,
         pad: i32,
     ) -> anyhow::Result<()> {
-        let text = |t: &str, at: (i32, i32), size: f64, colour: RGBColor| {
-            root.draw(&Text::new(
-                t.to_string(),
-                at,
-                (FONT, size).into_font().color(&colour),
-            ))
-            .map_err(drawing)
-        };
+        let text = |t: &str, at, size, colour| text_at(root, t, at, size, colour);
         let (w, h) = (self.width as i32, self.height as i32);
         // A scale bar of a round length near a sixth of the width.
         let want = self.width / 6.0 / self.scale;
