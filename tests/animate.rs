@@ -307,10 +307,7 @@ fn bad_input_exits_2_with_a_message_and_leaves_no_file() {
             &["--speed", "1e-8"],
             "more than 10000; a larger --speed or a smaller --fps",
         ),
-        (
-            &["--out", "tips.arrow"],
-            "that is the trace file being read",
-        ),
+        (&["--out", "tips.arrow"], "it is an input of this command"),
         (&["--out", "no-such-folder/x.gif"], "no-such-folder"),
     ];
     let mut runs: Vec<Vec<&str>> = Vec::new();

@@ -358,7 +358,7 @@ fn bad_studies_are_refused_with_the_reason() {
     assert!(
         other
             .stderr
-            .contains("is not this study's sweep at 0.4 (it differs in its seed)"),
+            .contains("holds another study (lander.cg_height_m = 0.4:0.5:2, seed 1"),
         "{other}"
     );
     assert!(read_bytes(&dir.join("study/00-cg_height_m-0.4.arrow")) == before);

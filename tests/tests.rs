@@ -4,6 +4,7 @@ mod agreement;
 mod animate;
 mod boundary;
 mod cli;
+mod collisions;
 mod common;
 mod cpus;
 mod inputs;

@@ -32,7 +32,6 @@ pub struct Rendered {
 pub fn animate(trace: &Path, out: &Path, o: &Options) -> anyhow::Result<Rendered> {
     check(o)?;
     crate::output::check_output_path(out)?;
-    crate::scene::refuse_overwriting(trace, out)?;
     let scene = Scene::read(trace)?;
     register_font()?;
     let (t0, t1) = scene.trace.span_s();

@@ -90,6 +90,9 @@ pub fn main() -> std::process::ExitCode {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
+    crate::output::inputs::declare(&inputs_of(&cli.command));
+    // Standard output redirected into an input (`report s.arrow >> s.arrow`).
+    crate::output::inputs::refuse_stdout_as_output()?;
     match cli.command {
         Command::Scenario => scenario::run(),
         Command::Trace(args) => trace::run(&args),
@@ -104,4 +107,32 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::View(args) => view::run(&args),
         Command::Merge(args) => merge::run(&args),
     }
+}
+
+/// The files `command` reads, which none of its outputs may be (`output::inputs`).
+fn inputs_of(command: &Command) -> Vec<&std::path::Path> {
+    use std::path::Path;
+    let given: Vec<Option<&Path>> = match command {
+        Command::Scenario => vec![],
+        Command::Trace(a) => vec![
+            a.sweep.as_deref(),
+            a.scenario.as_deref(),
+            a.inputs.as_deref(),
+        ],
+        Command::Sweep(a) => vec![a.scenario.as_deref(), a.inputs.as_deref()],
+        Command::Study(a) => vec![a.scenario.as_deref()],
+        Command::Boundary(a) => vec![a.scenario.as_deref()],
+        // A slope distribution may be given as a file.
+        Command::Report(a) => vec![
+            Some(&a.sweep),
+            a.slope_distribution.as_deref().map(Path::new),
+        ],
+        Command::Sensitivity(a) => vec![Some(&a.sweep)],
+        Command::Compare(a) => vec![Some(&a.a), Some(&a.b)],
+        Command::Plot(a) => vec![Some(&a.file)],
+        Command::Animate(a) => vec![Some(&a.trace)],
+        Command::View(a) => vec![Some(&a.trace)],
+        Command::Merge(a) => a.shards.iter().map(|p| Some(p.as_path())).collect(),
+    };
+    given.into_iter().flatten().collect()
 }

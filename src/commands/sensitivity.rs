@@ -23,13 +23,6 @@ pub fn run(args: &SensitivityArgs) -> anyhow::Result<()> {
     let bootstrap = usize::try_from(args.bootstrap).unwrap_or(usize::MAX);
     if let Some(png) = &args.png {
         crate::output::check_output_path(png)?;
-        if let (Ok(a), Ok(b)) = (
-            std::fs::canonicalize(png),
-            std::fs::canonicalize(&args.sweep),
-        ) && a == b
-        {
-            anyhow::bail!("--png {}: that is the sweep file being read", png.display());
-        }
     }
     let analysis = crate::sensitivity::analyse(&args.sweep, bootstrap)?;
     if let Some(png) = &args.png {

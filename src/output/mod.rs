@@ -3,6 +3,8 @@
 
 pub mod columns;
 pub mod format;
+pub mod inputs;
+mod lock;
 pub mod merge;
 pub mod read;
 pub mod resume;
@@ -13,6 +15,8 @@ use arrow_schema::{DataType, Field};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+
+pub use lock::FolderLock;
 
 /// The engine and version that write a file, as stored in its schema metadata.
 pub const ENGINE: &str = concat!("touchdown ", env!("CARGO_PKG_VERSION"));
@@ -82,9 +86,15 @@ pub type Out = BufWriter<Sink>;
 /// regular file (a device, a FIFO, a symbolic link to one) is written into directly and
 /// never replaced, and `-` is standard output: such streams cannot be renamed, so they are
 /// complete when the writer says so.
+///
+/// One run writes a regular file at a time: the temporary file stays locked until it is
+/// renamed or removed, and a second run to the same path is refused, naming the first.
 pub struct AtomicFile {
     target: Target,
     committed: bool,
+    /// The lock on the temporary file of a regular output, released after it is renamed
+    /// or removed (never before: the name could then be another run's file).
+    lock: Option<File>,
 }
 
 impl AtomicFile {
@@ -93,10 +103,15 @@ impl AtomicFile {
     pub fn create(path: &Path) -> anyhow::Result<(AtomicFile, Out)> {
         check_output_path(path)?;
         let target = target_of(path)?;
+        let mut lock = None;
         let sink = match &target {
-            Target::Regular { partial, .. } => Sink::File(File::create(partial).map_err(|e| {
-                anyhow::anyhow!("cannot write output file {}: {e}", partial.display())
-            })?),
+            Target::Regular { partial, .. } => {
+                let file = lock::create_locked(partial, path)?;
+                lock = Some(file.try_clone().map_err(|e| {
+                    anyhow::anyhow!("cannot write output file {}: {e}", partial.display())
+                })?);
+                Sink::File(file)
+            }
             Target::Direct { path } => Sink::File(
                 std::fs::OpenOptions::new()
                     .write(true)
@@ -108,6 +123,7 @@ impl AtomicFile {
         let handle = AtomicFile {
             target,
             committed: false,
+            lock,
         };
         Ok((handle, BufWriter::with_capacity(1 << 20, sink)))
     }
@@ -138,11 +154,31 @@ impl AtomicFile {
 
     /// Flushes `writer`; a regular file is synced and renamed onto its final path.
     pub fn commit(self, writer: Out) -> anyhow::Result<()> {
+        self.commit_replacing(writer, None)
+    }
+
+    /// As `commit`, and removes `stale` (a file the finished one makes obsolete, such as an
+    /// interrupted run's) while no other run can write the output.
+    pub fn commit_replacing(mut self, writer: Out, stale: Option<&Path>) -> anyhow::Result<()> {
         let path = match &self.target {
             Target::Regular { path, .. } => Some(path.clone()),
             _ => None,
         };
-        self.finish(writer, path.as_deref())
+        let lock = self.lock.take();
+        self.finish(writer, path.as_deref())?;
+        if let (Some(stale), Some(path)) = (stale, &path)
+            && std::fs::symlink_metadata(stale).is_ok()
+        {
+            std::fs::remove_file(stale).map_err(|e| {
+                anyhow::anyhow!(
+                    "finished {}, but cannot remove {}: {e}",
+                    path.display(),
+                    stale.display()
+                )
+            })?;
+        }
+        drop(lock);
+        Ok(())
     }
 
     /// Flushes `writer`; a regular file is synced and renamed onto `path` instead of its
@@ -177,6 +213,8 @@ impl Drop for AtomicFile {
         if let (false, Target::Regular { partial, .. }) = (self.committed, &self.target) {
             let _ = std::fs::remove_file(partial);
         }
+        // Only now may another run take the name.
+        self.lock.take();
     }
 }
 
@@ -217,11 +255,12 @@ fn target_of(path: &Path) -> anyhow::Result<Target> {
     })
 }
 
-/// Refuses an output path whose folder is missing or that names a folder, before any work.
-/// `-` (standard output) and existing files of any kind other than folders are accepted.
+/// Refuses an output path whose folder is missing, that names a folder or that is one of
+/// the command's inputs (`inputs::declare`), before any work. `-` (standard output) and
+/// existing files of any kind other than folders are accepted.
 pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
     if path.as_os_str() == "-" {
-        return Ok(());
+        return inputs::refuse_stdout_as_output();
     }
     if path.as_os_str().is_empty() || path.file_name().is_none() {
         anyhow::bail!("output path {:?} names no file", path.display().to_string());
@@ -230,7 +269,7 @@ pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
         anyhow::bail!("output path {} is a folder, not a file", path.display());
     }
     if std::fs::metadata(path).is_ok() {
-        return Ok(());
+        return inputs::refuse_input_as_output(path);
     }
     let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,

@@ -1,6 +1,7 @@
-//! Interrupted sweeps: a sweep stopped by SIGINT or SIGTERM closes its file as a valid one
-//! under `OUT.interrupted` (never under `OUT`, which only a complete sweep takes), and
-//! `sweep --resume OUT` reads its settings and rows back from there to finish the sweep.
+//! Interrupted sweeps: a sweep stopped by SIGINT, SIGTERM or SIGHUP closes its file as a
+//! valid one under `OUT.interrupted` (never under `OUT`, which only a complete sweep
+//! takes), and `sweep --resume OUT` reads its settings and rows back from there to finish
+//! the sweep.
 
 use super::ENGINE;
 use super::format::{BATCH_ROWS, Format};

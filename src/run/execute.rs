@@ -53,6 +53,16 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     if run.banner {
         eprintln!("{}", banner(plan, &range, kept, threads, run.auto_kernel));
     }
+    let stale = crate::output::interrupted_path(&plan.out);
+    if plan.resume.is_none() && stale.exists() {
+        eprintln!(
+            "touchdown: note: {} holds an interrupted sweep to {}; this run replaces it when \
+             it ends (to continue that one instead, stop this run and use {})",
+            stale.display(),
+            plan.out.display(),
+            plan.continue_with
+        );
+    }
     let mut counts = [0u64; Outcome::ALL.len()];
     let mut steps = 0u64;
     if let Some(from) = &plan.resume {
@@ -91,16 +101,8 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     if ran.end < todo.end {
         return Err(interrupted(plan, writer, run, &range)?);
     }
+    // Finishing removes the interrupted run's file it continued (or made obsolete).
     let rows = writer.finish()?;
-    if let Some(from) = &plan.resume {
-        std::fs::remove_file(&from.path).map_err(|e| {
-            anyhow::anyhow!(
-                "finished {}, but cannot remove {}: {e}",
-                plan.out.display(),
-                from.path.display()
-            )
-        })?;
-    }
     Ok(Executed {
         rows,
         computed,
@@ -219,11 +221,7 @@ fn interrupted(
 ) -> anyhow::Result<anyhow::Error> {
     let signal = run.stop.load(std::sync::atomic::Ordering::Relaxed);
     let (rows, path) = writer.finish_interrupted()?;
-    let name = if signal == signal_hook::consts::SIGTERM as usize {
-        "SIGTERM"
-    } else {
-        "SIGINT"
-    };
+    let name = super::workers::signal_name(signal);
     let message = match path {
         Some(path) => format!(
             "interrupted by {name}: {rows} of {} samples done, in {} (a valid file); \

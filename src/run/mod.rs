@@ -5,6 +5,7 @@
 
 pub mod boundary;
 mod execute;
+mod folder;
 mod load;
 mod plan;
 pub mod study;

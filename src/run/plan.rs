@@ -128,6 +128,7 @@ impl SweepPlan {
         kernel: KernelChoice,
     ) -> anyhow::Result<SweepPlan> {
         let from = crate::output::resume::Interrupted::read(out)?;
+        refuse_older_than_finished(out, &from)?;
         let mut scenario = scenario_from_toml(&from.scenario_toml)
             .map_err(|e| anyhow::anyhow!("the scenario of {}: {e}", from.path.display()))?;
         scenario.seed = from.seed;
@@ -187,5 +188,62 @@ pub fn output_format(out: &Path, flag: Option<Format>) -> anyhow::Result<Format>
         ),
         (Some(f), _) => Ok(f),
         (None, e) => Ok(e.unwrap_or(Format::Arrow)),
+    }
+}
+
+/// Refuses to resume the interrupted sweep `from` onto `out` where `out` is a finished file
+/// written after the interruption (a later run to the same path): resuming would replace
+/// the newer file with the older run's.
+fn refuse_older_than_finished(
+    out: &Path,
+    from: &crate::output::resume::Interrupted,
+) -> anyhow::Result<()> {
+    let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
+    let (Some(finished), Some(interrupted)) = (modified(out), modified(&from.path)) else {
+        return Ok(());
+    };
+    let Ok(later) = finished.duration_since(interrupted) else {
+        return Ok(());
+    };
+    if later.is_zero() {
+        return Ok(());
+    }
+    let run = crate::output::read::format_of(out)
+        .and_then(|f| crate::output::read::open(out, f))
+        .ok()
+        .map(|(schema, _)| {
+            let m = schema.metadata();
+            let key = |k: &str| m.get(k).map_or("?", String::as_str).to_string();
+            format!(
+                "a sweep of seed {}, {} samples",
+                key("touchdown.seed"),
+                key("touchdown.samples")
+            )
+        })
+        .unwrap_or_else(|| "not a sweep file of touchdown".to_string());
+    anyhow::bail!(
+        "--resume {}: {} ({run}) was written {} after {} (seed {}, {} samples, {} rows done) \
+         was interrupted; resuming would replace the newer file with the older run's. To \
+         keep {}, remove {}; to resume, move {} away first",
+        out.display(),
+        out.display(),
+        duration_words(later.as_secs_f64()),
+        from.path.display(),
+        from.seed,
+        from.samples,
+        from.rows,
+        out.display(),
+        from.path.display(),
+        out.display()
+    )
+}
+
+/// A duration as words: `40 s`, `12 min`, `3.5 h`, `2.0 days`.
+fn duration_words(s: f64) -> String {
+    match s {
+        s if s < 120.0 => format!("{s:.0} s"),
+        s if s < 7200.0 => format!("{:.0} min", s / 60.0),
+        s if s < 172_800.0 => format!("{:.1} h", s / 3600.0),
+        s => format!("{:.1} days", s / 86_400.0),
     }
 }

@@ -290,6 +290,8 @@ pub struct Study {
     pub log: String,
     /// When the values' runs began.
     pub started: std::time::Instant,
+    /// The study's folder, locked until the study has written its table.
+    pub lock: crate::output::FolderLock,
 }
 
 /// Runs the study `args` asks for: each value's sweep (or its shard) kept, merged,
@@ -308,12 +310,20 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
         bail!("--out-dir {}: that is a file, not a folder", dir.display());
     }
     let points = points(args, &parsed)?;
+    let lock = super::folder::lock_folder(dir, args.shard.is_some())?;
+    let id = super::folder::StudyId {
+        key: &args.vary.key,
+        values: format!("{}:{}:{}", args.vary.min, args.vary.max, args.vary.count),
+        seed: base.seed,
+        samples,
+        base_text: &base_text,
+    };
+    let files: Vec<PathBuf> = points.iter().map(|p| p.file.clone()).collect();
+    super::folder::refuse_other_study(dir, &id, &files)?;
     let steps = points
         .iter()
         .map(|p| step_of(p, samples, args.shard))
         .collect::<anyhow::Result<Vec<Step>>>()?;
-    std::fs::create_dir_all(dir)
-        .map_err(|e| anyhow!("cannot make the study's folder {}: {e}", dir.display()))?;
 
     let pool = worker_pool(args.threads)?;
     let stop = stop_on_signals()?;
@@ -365,6 +375,7 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
         base_text,
         log,
         started,
+        lock,
     })
 }
 

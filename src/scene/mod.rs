@@ -18,4 +18,4 @@ pub use ground::Ground;
 pub use pose::Pose;
 pub use read::Scene;
 pub use sketch::{LegSketch, Sketch, ThrusterSketch};
-pub use trace::{Trace, refuse_overwriting, sparse_note};
+pub use trace::{Trace, sparse_note};

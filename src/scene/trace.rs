@@ -35,17 +35,6 @@ pub struct Trace {
     table: Table,
 }
 
-/// Refuses an output `out` that is the trace file `trace` itself (a picture written over
-/// the data it shows).
-pub fn refuse_overwriting(trace: &Path, out: &Path) -> anyhow::Result<()> {
-    if let (Ok(a), Ok(b)) = (std::fs::canonicalize(trace), std::fs::canonicalize(out))
-        && a == b
-    {
-        bail!("--out {}: that is the trace file being read", out.display());
-    }
-    Ok(())
-}
-
 /// What a trace of every N steps leaves out, for a note to its user.
 #[must_use]
 pub fn sparse_note(trace: &Path, every: u64) -> Option<String> {

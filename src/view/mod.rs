@@ -36,7 +36,6 @@ pub struct Written {
 /// Writes the page of the trace at `trace` to `out`.
 pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
     crate::output::check_output_path(out)?;
-    crate::scene::refuse_overwriting(trace, out)?;
     let scene = Scene::read(trace)?;
     let (json, times) = trace_json(&scene);
     let page = TEMPLATE.replacen(PLACEHOLDER, &json.replace("</", "<\\/"), 1);

@@ -124,7 +124,9 @@ impl SweepWriter {
         Ok(())
     }
 
-    /// Writes the last batch, closes the file and gives it its name. Returns the row count.
+    /// Writes the last batch, closes the file and gives it its name; removes the file of an
+    /// interrupted sweep to the same path (`OUT.interrupted`), which this one continued or
+    /// makes obsolete. Returns the row count.
     pub fn finish(self) -> anyhow::Result<u64> {
         Ok(self.close(None)?.0)
     }
@@ -168,7 +170,9 @@ impl SweepWriter {
         })?;
         let made = match name {
             None => {
-                self.file.commit(out)?;
+                // A finished sweep makes an interrupted one to the same path obsolete.
+                let stale = crate::output::interrupted_path(&self.path);
+                self.file.commit_replacing(out, Some(&stale))?;
                 false
             }
             Some(path) => self.file.commit_as(out, path)?,
