@@ -29,7 +29,12 @@ pub(super) fn create_locked(partial: &Path, out: &Path) -> anyhow::Result<File> 
             Err(std::fs::TryLockError::WouldBlock) => {
                 return Err(busy(&file, out, "writing"));
             }
-            Err(std::fs::TryLockError::Error(e)) => return Err(cannot(e)),
+            // A file system without locks (some network and FUSE ones): written unlocked,
+            // as before locks were taken.
+            Err(std::fs::TryLockError::Error(_)) => {
+                file.set_len(0).map_err(cannot)?;
+                return Ok(file);
+            }
         }
         let locked = file.metadata().map_err(cannot)?;
         match std::fs::metadata(partial) {
@@ -66,11 +71,9 @@ impl FolderLock {
             folder.try_lock()
         };
         match locked {
-            Ok(()) => Ok(FolderLock { _folder: folder }),
+            // A file system without locks: the folder goes unlocked.
+            Ok(()) | Err(std::fs::TryLockError::Error(_)) => Ok(FolderLock { _folder: folder }),
             Err(std::fs::TryLockError::WouldBlock) => Err(busy(&folder, dir, "writing into")),
-            Err(std::fs::TryLockError::Error(e)) => {
-                Err(anyhow!("cannot lock the folder {}: {e}", dir.display()))
-            }
         }
     }
 }
@@ -115,7 +118,11 @@ fn holder_of(dev: u64, ino: u64) -> Option<(u32, Option<String>)> {
                 .filter(|w| !w.is_empty())
                 .map(|w| String::from_utf8_lossy(w).into_owned())
                 .collect();
-            words.join(" ")
+            let line = words.join(" ");
+            match line.char_indices().nth(200) {
+                Some((cut, _)) => format!("{}...", &line[..cut]),
+                None => line,
+            }
         })
         .filter(|c| !c.is_empty());
     Some((pid, command))
