@@ -28,3 +28,4 @@ mod thrust;
 mod user_law;
 mod validation;
 mod weighting;
+mod write_errors;

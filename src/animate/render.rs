@@ -8,10 +8,13 @@ use super::timing::{
     MAX_FRAMES, Options, check, default_speed, frame_count, frame_delay_cs, frame_times,
 };
 use crate::output::AtomicFile;
+use crate::output::trace::cannot_write;
 use crate::plot::canvas::register_font;
+use crate::run::Interrupted;
 use crate::scene::Scene;
 use anyhow::{anyhow, bail};
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// What `animate` wrote.
 #[derive(Debug, Clone, Copy)]
@@ -28,8 +31,15 @@ pub struct Rendered {
     pub every: u64,
 }
 
-/// Writes the GIF of the trace at `trace` to `out`.
-pub fn animate(trace: &Path, out: &Path, o: &Options) -> anyhow::Result<Rendered> {
+/// Writes the GIF of the trace at `trace` to `out`. A signal in `stop` (its number, 0 for
+/// none: `run::stop_on_signals`) ends it before the next frame with an `Interrupted` error,
+/// its unfinished file removed.
+pub fn animate(
+    trace: &Path,
+    out: &Path,
+    o: &Options,
+    stop: &AtomicUsize,
+) -> anyhow::Result<Rendered> {
     check(o)?;
     crate::output::check_output_path(out)?;
     let scene = Scene::read(trace)?;
@@ -52,7 +62,10 @@ pub fn animate(trace: &Path, out: &Path, o: &Options) -> anyhow::Result<Rendered
     let palette = Palette::new();
 
     let (file, mut sink) = AtomicFile::create(out)?;
-    let context = |e: gif::EncodingError| anyhow!("cannot write {}: {e}", out.display());
+    let context = |e: gif::EncodingError| match e {
+        gif::EncodingError::Io(io) => cannot_write(out, io),
+        e => anyhow!("cannot write {}: {e}", out.display()),
+    };
     let mut counted = Counted {
         inner: &mut sink,
         bytes: 0,
@@ -69,6 +82,7 @@ pub fn animate(trace: &Path, out: &Path, o: &Options) -> anyhow::Result<Rendered
         let mut background: Option<(Camera, Vec<u8>)> = None;
         let mut playback_cs = 0u64;
         for (k, &t) in times.iter().enumerate() {
+            stopped(stop, out)?;
             let pose = scene.pose(since, t);
             since = t;
             let camera = cameras[k];
@@ -90,6 +104,7 @@ pub fn animate(trace: &Path, out: &Path, o: &Options) -> anyhow::Result<Rendered
         }
         drop(encoder);
         let bytes = counted.bytes;
+        std::io::Write::flush(&mut sink).map_err(|e| context(e.into()))?;
         file.commit(sink)?;
         Ok(Rendered {
             frames: times.len(),
@@ -99,6 +114,29 @@ pub fn animate(trace: &Path, out: &Path, o: &Options) -> anyhow::Result<Rendered
             every: scene.trace.every,
         })
     }
+}
+
+/// The `Interrupted` error of a signal in `stop`, if one came: the GIF to `out` is left
+/// unwritten (dropped, its unfinished file is removed).
+fn stopped(stop: &AtomicUsize, out: &Path) -> anyhow::Result<()> {
+    let signal = stop.load(Ordering::Relaxed);
+    if signal == 0 {
+        return Ok(());
+    }
+    let name = match signal as i32 {
+        signal_hook::consts::SIGINT => "SIGINT".to_string(),
+        signal_hook::consts::SIGTERM => "SIGTERM".to_string(),
+        signal_hook::consts::SIGHUP => "SIGHUP".to_string(),
+        n => format!("signal {n}"),
+    };
+    Err(Interrupted {
+        code: (128 + signal).min(255) as u8,
+        message: format!(
+            "interrupted by {name}: {} not written (its unfinished frames removed)",
+            out.display()
+        ),
+    }
+    .into())
 }
 
 /// A writer that counts what passes.

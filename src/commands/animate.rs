@@ -1,7 +1,7 @@
 //! `touchdown animate`: a trace file as a GIF.
 
 use super::flags::{beside, parse_size};
-use super::print::{say, shown};
+use super::print::{say, shown, tell};
 use std::path::PathBuf;
 
 /// Flags of `touchdown animate`.
@@ -39,11 +39,13 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
         height: args.size.1,
     };
     let started = std::time::Instant::now();
-    let r = crate::animate::animate(&args.trace, &out, &options)?;
+    let stop = crate::run::stop_on_signals()?;
+    let r = crate::animate::animate(&args.trace, &out, &options, &stop)?;
     if let Some(note) = crate::scene::sparse_note(&args.trace, r.every) {
-        eprintln!("{note}");
+        tell(&format!("{note}\n"));
     }
     say(
+        "the animation's summary",
         &format!(
             "{} frames at {} fps, {}x speed: plays in {:.1} s\nwrote {}: {:.2} MB in {:.1} s\n",
             r.frames,
@@ -59,6 +61,5 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
             started.elapsed().as_secs_f64()
         ),
         &out,
-    );
-    Ok(())
+    )
 }

@@ -68,8 +68,10 @@ pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
     };
     let progress = !args.quiet && std::io::stderr().is_terminal();
     let found = search(scenario, &settings, args.threads.threads, progress)?;
-    print_out(&markdown(args, seed, &found, started));
-    Ok(())
+    print_out(
+        "the search's report",
+        &markdown(args, seed, &found, started),
+    )
 }
 
 /// The search's report: what ran, and the allowable slope of each sector.

@@ -16,6 +16,8 @@ pub struct CompareArgs {
 
 /// Runs `touchdown compare`.
 pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
-    print_out(&crate::compare::compare(&args.a, &args.b)?);
-    Ok(())
+    print_out(
+        "the comparison",
+        &crate::compare::compare(&args.a, &args.b)?,
+    )
 }

@@ -27,29 +27,36 @@ pub struct SweepOut {
     pub format: Option<Format>,
 }
 
-/// Parses a whole number written as `250000`, `1e6` or `2.5e5`.
+/// The largest count or seed: the largest whole number a scenario file holds (TOML's
+/// integers are 64-bit signed), 2^63 - 1, so that every value of a flag can be written
+/// into the scenario a file stores.
+const MAX_COUNT: u64 = i64::MAX as u64;
+
+/// Parses a whole number from 0 to `MAX_COUNT` written as `250000`, `1e6` or `2.5e5`.
 pub fn parse_count(s: &str) -> Result<u64, String> {
     let t = s.trim().replace('_', "");
-    if let Ok(n) = t.parse::<u64>() {
-        return Ok(n);
+    let too_large = || format!("{s:?} is too large: at most {MAX_COUNT} (2^63 - 1)");
+    if let Ok(n) = t.parse::<u128>() {
+        return u64::try_from(n)
+            .ok()
+            .filter(|&n| n <= MAX_COUNT)
+            .ok_or_else(too_large);
     }
     let bad = || format!("{s:?} is not a whole number (examples: 250000, 1e6, 2.5e5)");
     let x: f64 = t.parse().map_err(|_| bad())?;
     if !x.is_finite() || x < 0.0 || x.fract() != 0.0 {
         return Err(bad());
     }
-    if x > 2f64.powi(63) {
-        return Err(format!("{s:?} is too large (at most 2^63)"));
+    // 2^63 is the first float past MAX_COUNT (which is not a float).
+    if x >= 2f64.powi(63) {
+        return Err(too_large());
     }
     Ok(x as u64)
 }
 
-/// A seed: a whole number a scenario file can hold too (at most 2^63 - 1).
+/// A seed: a whole number a scenario file can hold too (`parse_count`'s range).
 pub fn parse_seed(s: &str) -> Result<u64, String> {
-    match parse_count(s)? {
-        n if n > i64::MAX as u64 => Err(format!("must be at most {}", i64::MAX)),
-        n => Ok(n),
-    }
+    parse_count(s)
 }
 
 /// A worker thread count, 1 to 1024 (`--threads`).
@@ -104,7 +111,21 @@ mod tests {
         assert_eq!(parse_count("1e6"), Ok(1_000_000));
         assert_eq!(parse_count("2.5e5"), Ok(250_000));
         assert_eq!(parse_count("1_000"), Ok(1000));
-        for bad in ["-1", "1.5", "abc", "1e30", "nan", ""] {
+        assert_eq!(parse_count("9223372036854775807"), Ok(i64::MAX as u64));
+        assert_eq!(parse_count("9.2e18"), Ok(9_200_000_000_000_000_000));
+        for bad in [
+            "-1",
+            "1.5",
+            "abc",
+            "1e30",
+            "nan",
+            "",
+            "9223372036854775808",
+            "9.223372036854775808e18",
+            "1.8e19",
+            "18446744073709551616",
+            "340282366920938463463374607431768211456",
+        ] {
             assert!(parse_count(bad).is_err(), "{bad}");
         }
     }

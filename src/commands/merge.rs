@@ -22,6 +22,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let format = crate::run::output_format(out, args.output.format)?;
     let m = crate::output::merge::merge(&args.shards, out, format)?;
     say(
+        "the merge's summary",
         &format!(
             "merged {} shards, {} samples\nwrote {}\n",
             m.shards,
@@ -29,6 +30,5 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
             shown(out)
         ),
         out,
-    );
-    Ok(())
+    )
 }

@@ -69,20 +69,22 @@ pub enum Command {
 }
 
 /// The `touchdown` program: parses the command line, runs it, prints an error and returns
-/// exit code 2 (or the code of an interruption) where it fails. A program that embeds
-/// touchdown, to register laws of its own (`control::register_law`), calls this from its
-/// `main`.
+/// exit code 2 (or the code of an interruption) where it fails. A closed pipe on its output
+/// ends it quietly with exit code 0, as the reader had what it wanted (`report | head -1`).
+/// A program that embeds touchdown, to register laws of its own (`control::register_law`),
+/// calls this from its `main`.
 #[must_use]
 pub fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) if print::closed_pipe(&e) => std::process::ExitCode::SUCCESS,
         Err(e) => {
             if let Some(i) = e.downcast_ref::<crate::run::Interrupted>() {
-                eprintln!("touchdown: {i}");
+                print::tell(&format!("touchdown: {i}\n"));
                 return std::process::ExitCode::from(i.code);
             }
-            eprintln!("touchdown: error: {e:#}");
+            print::tell(&format!("touchdown: error: {e:#}\n"));
             std::process::ExitCode::from(2)
         }
     }

@@ -18,7 +18,7 @@ pub struct PlotArgs {
 /// Runs `touchdown plot`.
 pub fn run(args: &PlotArgs) -> anyhow::Result<()> {
     for p in crate::plot::plot(&args.file, args.out_dir.as_deref())? {
-        print_out(&format!("wrote {}\n", p.display()));
+        print_out("the list of pictures", &format!("wrote {}\n", p.display()))?;
     }
     Ok(())
 }

@@ -26,6 +26,5 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         .map(|d| crate::weighting::SlopeDistribution::parse(d).map(|t| (t, d)))
         .transpose()?;
     let terrain = terrain.as_ref().map(|(t, d)| (t, *d));
-    print_out(&crate::report::report(&args.sweep, terrain)?);
-    Ok(())
+    print_out("the report", &crate::report::report(&args.sweep, terrain)?)
 }

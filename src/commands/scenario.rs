@@ -5,6 +5,5 @@ use crate::scenario::DEFAULT_TOML;
 
 /// Prints the default scenario.
 pub fn run() -> anyhow::Result<()> {
-    print_out(DEFAULT_TOML);
-    Ok(())
+    print_out("the scenario", DEFAULT_TOML)
 }

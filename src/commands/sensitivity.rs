@@ -33,6 +33,8 @@ pub fn run(args: &SensitivityArgs) -> anyhow::Result<()> {
         );
         crate::plot::sensitivity_chart(png, &analysis, &title)?;
     }
-    print_out(&crate::sensitivity::markdown(&args.sweep, &analysis));
-    Ok(())
+    print_out(
+        "the indices",
+        &crate::sensitivity::markdown(&args.sweep, &analysis),
+    )
 }

@@ -10,7 +10,6 @@ use crate::run::KernelChoice;
 use crate::run::study::StudySettings;
 use crate::study::{About, Row, Vary, markdown, write_table};
 use crate::sweep::Shard;
-use anyhow::anyhow;
 use std::path::{Path, PathBuf};
 
 /// Flags of `touchdown study`.
@@ -69,14 +68,17 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     };
     let study = crate::run::study::run(&settings)?;
     let samples = study.samples;
-    print_out(&study.log);
+    print_out("the study's log", &study.log)?;
     if let Some(s) = args.shard {
-        print_out(&format!(
-            "shard {s} of every value done in {:.1} s; once all {} shards are done, the same \
+        print_out(
+            "the study's log",
+            &format!(
+                "shard {s} of every value done in {:.1} s; once all {} shards are done, the same \
              command without --shard merges them and writes the study's table\n",
-            study.started.elapsed().as_secs_f64(),
-            s.count
-        ));
+                study.started.elapsed().as_secs_f64(),
+                s.count
+            ),
+        )?;
         return Ok(());
     }
     let rows = study
@@ -105,13 +107,15 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     let text = markdown(&rows, &about);
     write_text(&md, &text)?;
     crate::plot::study_chart(&png, &rows, &about)?;
-    print_out(&format!(
-        "\n{text}\nwrote {}, {} and {}\n",
-        table.display(),
-        md.display(),
-        png.display()
-    ));
-    Ok(())
+    print_out(
+        "the study's table",
+        &format!(
+            "\n{text}\nwrote {}, {} and {}\n",
+            table.display(),
+            md.display(),
+            png.display()
+        ),
+    )
 }
 
 /// Writes `text` to `path`, complete or not at all.
@@ -119,6 +123,7 @@ fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
     use std::io::Write;
     let (file, mut out) = crate::output::AtomicFile::create(path)?;
     out.write_all(text.as_bytes())
-        .map_err(|e| anyhow!("cannot write {}: {e}", path.display()))?;
+        .and_then(|()| out.flush())
+        .map_err(|e| crate::output::trace::cannot_write(path, e))?;
     file.commit(out)
 }

@@ -123,7 +123,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         ));
     }
     t.push_str(&format!("wrote {}\n", shown(&plan.out)));
-    say(&t, &plan.out);
+    say("the sweep's summary", &t, &plan.out)?;
     warn_untouched(&done, &plan.scenario, "");
     Ok(())
 }

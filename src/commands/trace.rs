@@ -60,8 +60,7 @@ pub fn run(args: &TraceArgs) -> anyhow::Result<()> {
         args.every,
         done.summary.steps
     ));
-    say(&text, &args.out);
-    Ok(())
+    say("the trace's summary", &text, &args.out)
 }
 
 /// The inputs and summary of a sample, for people.

@@ -1,7 +1,7 @@
 //! `touchdown view`: a trace file as one self-contained HTML page.
 
 use super::flags::beside;
-use super::print::{say, shown};
+use super::print::{say, shown, tell};
 use std::path::PathBuf;
 
 /// Flags of `touchdown view`.
@@ -19,9 +19,10 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let out = beside(&args.trace, args.out.as_ref(), "html");
     let w = crate::view::view(&args.trace, &out)?;
     if let Some(note) = crate::scene::sparse_note(&args.trace, w.every) {
-        eprintln!("{note}");
+        tell(&format!("{note}\n"));
     }
     say(
+        "the page's summary",
         &format!(
             "{} times of {} rows\nwrote {}: {:.2} MB\n",
             w.times,
@@ -30,6 +31,5 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             w.bytes as f64 / 1e6
         ),
         &out,
-    );
-    Ok(())
+    )
 }

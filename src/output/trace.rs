@@ -14,6 +14,7 @@ use arrow_array::{ArrayRef, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Schema};
 use glam::{DMat3, DQuat, DVec3, EulerRot};
 use std::collections::BTreeMap;
+use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -423,7 +424,7 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     let schema = Arc::new(Schema::new_with_metadata(fields, meta));
 
     let (file, out) = AtomicFile::create(path)?;
-    let mut writer = IpcWriter::new(&file, out, &schema)?;
+    let mut writer = IpcWriter::new(&file, out, &schema).map_err(|e| cannot_write(path, e))?;
     let mut data = Rows::new(numbers, sensed);
     let control = looped.is_some();
     let mut rows = 0u64;
@@ -446,7 +447,7 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
             if data.len() >= BATCH_ROWS
                 && let Err(e) = data
                     .take(&schema, control)
-                    .and_then(|b| Ok(writer.write(&b)?))
+                    .and_then(|b| writer.write(&b).map_err(|e| cannot_write(path, e)))
             {
                 failure = Some(e);
             }
@@ -461,10 +462,34 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     data.push(model, &end, propellant(impulse_n_s));
     rows += 1;
     if data.len() > 0 {
-        writer.write(&data.take(&schema, control)?)?;
+        let batch = data.take(&schema, control)?;
+        writer.write(&batch).map_err(|e| cannot_write(path, e))?;
     }
-    file.commit(writer.finish()?)?;
+    let mut out = writer.finish().map_err(|e| cannot_write(path, e))?;
+    out.flush().map_err(|e| cannot_write(path, e))?;
+    file.commit(out)?;
     Ok(rows)
+}
+
+/// The error of a failed write to the output `path` (`-`: standard output), such as a full
+/// disk: the output named once and the reason once (Arrow's and Parquet's errors wrap the
+/// system's and repeat it). An I/O error's kind stays in the error's source, so that a
+/// closed pipe is still told apart (the commands end quietly on one). The sweep's writer and
+/// the study's table report their write errors with it too.
+#[must_use]
+pub fn cannot_write(path: &Path, e: impl Into<anyhow::Error>) -> anyhow::Error {
+    let context = if path.as_os_str() == "-" {
+        "cannot write to standard output".to_string()
+    } else {
+        format!("cannot write output file {}", path.display())
+    };
+    let e = e.into();
+    let io = e.chain().find_map(|c| c.downcast_ref::<std::io::Error>());
+    match io {
+        Some(io) => anyhow::Error::new(std::io::Error::new(io.kind(), io.to_string())),
+        None => e,
+    }
+    .context(context)
 }
 
 /// The trace's provenance: engine, kind, scenario, seeds, the sample (index, outcome,

@@ -2,6 +2,7 @@
 //! not at all, the panel of lines and its legend.
 
 use crate::output::AtomicFile;
+use crate::output::trace::cannot_write;
 use anyhow::{anyhow, bail};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -72,7 +73,8 @@ pub(crate) fn save_png(
         image::codecs::png::FilterType::Adaptive,
     )
     .write_image(&pixels, width, height, image::ColorType::Rgb8)
-    .map_err(|e| anyhow!("cannot write {}: {e}", file.partial_path().display()))?;
+    .map_err(|e| cannot_write(path, e))?;
+    std::io::Write::flush(&mut out).map_err(|e| cannot_write(path, e))?;
     file.commit(out)
 }
 

@@ -74,6 +74,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     }
     let todo = (range.start + kept)..range.end;
     let bar = progress_bar(todo.end - todo.start, run.progress);
+    let mut eta = super::eta::Eta::start(todo.end - todo.start, threads);
     let start = std::time::Instant::now();
     let mut computed = 0u64;
     let mut untouched = 0u64;
@@ -92,6 +93,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
                     untouched += u64::from(r.summary.first_contact_s.is_none());
                 }
                 computed += rows.len() as u64;
+                eta.done(computed);
                 bar.inc(rows.len() as u64);
                 writer.push(rows)
             },

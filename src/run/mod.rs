@@ -4,6 +4,7 @@
 //! through here; nothing here knows the command line's flags.
 
 pub mod boundary;
+mod eta;
 mod execute;
 mod folder;
 mod load;

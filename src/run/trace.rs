@@ -7,6 +7,7 @@ use crate::reference::{self, Model, Summary};
 use crate::sampling;
 use crate::scenario::Sample;
 use crate::scenario::Scenario;
+use std::io::Write as _;
 use std::path::PathBuf;
 
 /// The settings of a trace (`touchdown trace`'s flags).
@@ -64,7 +65,9 @@ pub fn trace(args: &TraceSettings) -> anyhow::Result<Traced> {
         }
     };
     if scenario.simulation.precision == kernels::isa::Precision::F32 {
-        eprintln!(
+        // Written without `eprintln!`, which panics where stderr is gone.
+        let _ = writeln!(
+            std::io::stderr(),
             "touchdown: note: the scenario's sweeps run in f32 lanes; a trace runs the f64 \
              reference, whose outcome may differ from a sweep row's near a decision threshold \
              (11 of 100,000 default samples end otherwise in f32 lanes than in f64 lanes)"

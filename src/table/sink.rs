@@ -43,8 +43,15 @@ impl Sink {
         let whole = |cell: Cell<'_>, what: &str| -> Result<i128, String> {
             match cell {
                 Cell::Int(i) => Ok(i),
-                Cell::Float(x) if x.fract() == 0.0 && x.abs() < 2f64.powi(53) && what != "seed" => {
+                // Taken as the whole number it is, however large (1e18: the range of a
+                // tile or row then refuses it); i128 holds every float below 2^100.
+                Cell::Float(x)
+                    if x.fract() == 0.0 && x.abs() < 2f64.powi(100) && what != "seed" =>
+                {
                     Ok(x as i128)
+                }
+                Cell::Float(x) if x.fract() == 0.0 && what != "seed" => {
+                    Err(format!("{x} is out of range: far past any {what}"))
                 }
                 Cell::Float(x) if what == "seed" => Err(format!(
                     "{x} is not a whole number (a seed must be written as an integer: a \
@@ -72,7 +79,12 @@ impl Sink {
             }
             Sink::Tile(v) => {
                 let i = whole(cell, "tile")?;
-                v.push(u32::try_from(i).map_err(|_| format!("{i} is not a tile number"))?);
+                v.push(u32::try_from(i).map_err(|_| {
+                    format!(
+                        "{i} is out of range: a terrain tile is a whole number from 0 to \
+                         surface.roughness.tiles - 1"
+                    )
+                })?);
             }
             Sink::Offset(_, v) => {
                 let x = number(cell)?;

@@ -41,7 +41,8 @@ pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
     let page = TEMPLATE.replacen(PLACEHOLDER, &json.replace("</", "<\\/"), 1);
     let (file, mut sink) = AtomicFile::create(out)?;
     sink.write_all(page.as_bytes())
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", out.display()))?;
+        .and_then(|()| sink.flush())
+        .map_err(|e| crate::output::trace::cannot_write(out, e))?;
     file.commit(sink)?;
     Ok(Written {
         times,

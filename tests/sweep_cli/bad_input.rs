@@ -88,7 +88,49 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
     bad_args(
         "seed beyond what a scenario file can hold",
         &["--seed", "9223372036854775808"],
-        &["--seed", "at most 9223372036854775807"],
+        &["--seed", "at most 9223372036854775807 (2^63 - 1)"],
+    ),
+    // The limit is written one way, whatever way the number is written.
+    bad_args(
+        "seed beyond it, written as a float",
+        &["--seed", "1e19"],
+        &["--seed", "at most 9223372036854775807 (2^63 - 1)"],
+    ),
+    // With a scenario that does not exist, so that a sweep that takes the count fails at
+    // once rather than running for ever.
+    bad_args(
+        "samples 2^63",
+        &[
+            "--samples",
+            "9223372036854775808",
+            "--scenario",
+            "missing.toml",
+        ],
+        &[
+            "--samples",
+            "too large: at most 9223372036854775807 (2^63 - 1)",
+        ],
+    ),
+    bad_args(
+        "samples 2^64 - 1",
+        &[
+            "--samples",
+            "18446744073709551615",
+            "--scenario",
+            "missing.toml",
+        ],
+        &[
+            "--samples",
+            "too large: at most 9223372036854775807 (2^63 - 1)",
+        ],
+    ),
+    bad_args(
+        "samples 1.8e19",
+        &["--samples", "1.8e19", "--scenario", "missing.toml"],
+        &[
+            "--samples",
+            "too large: at most 9223372036854775807 (2^63 - 1)",
+        ],
     ),
     bad_args(
         "a flag of trace",
@@ -273,4 +315,29 @@ fn a_full_disk_is_reported_and_leaves_no_file() {
     );
     assert!(!stderr.contains("panicked"), "stderr: {stderr}");
     assert_eq!(dir.entries(), ["short.toml"]);
+}
+
+/// A terrain tile of a table far past any surface's tiles (1e18, a whole number held as a
+/// float) is refused with the allowed range, not called "not a whole number".
+#[test]
+fn a_huge_terrain_tile_is_out_of_range() {
+    let dir = TempDir::new("huge-tile");
+    for (name, cell) in [
+        ("float.csv", "1e18"),
+        ("integer.csv", "1000000000000000000"),
+    ] {
+        dir.write(name, &format!("slope_deg,terrain_tile\n10,{cell}\n"));
+        let run = crate::common::touchdown(
+            dir.path(),
+            &["sweep", "--inputs", name, "--quiet", "--out", "o.arrow"],
+        );
+        assert_eq!(run.code, Some(2), "{run}");
+        assert!(
+            run.stderr.contains(
+                "column terrain_tile: 1000000000000000000 is out of range: a terrain tile is a \
+                 whole number from 0 to surface.roughness.tiles - 1"
+            ),
+            "{run}"
+        );
+    }
 }

@@ -116,10 +116,10 @@ impl SweepWriter {
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
         debug_assert!(self.pending.is_empty(), "write_batch after push");
         let written = match &mut self.sink {
-            Writer::Arrow(w) => w.write(b).map_err(|e| e.to_string()),
-            Writer::Parquet(w) => w.write(b).map_err(|e| e.to_string()),
+            Writer::Arrow(w) => w.write(b).map_err(anyhow::Error::from),
+            Writer::Parquet(w) => w.write(b).map_err(anyhow::Error::from),
         };
-        written.map_err(|e| self.write_error(&e))?;
+        written.map_err(|e| self.write_error(e))?;
         self.rows += b.num_rows() as u64;
         Ok(())
     }
@@ -147,11 +147,8 @@ impl SweepWriter {
     }
 
     /// An error writing the file, naming it.
-    fn write_error(&self, e: &str) -> anyhow::Error {
-        anyhow::anyhow!(
-            "cannot write output file {}: {e}",
-            self.file.partial_path().display()
-        )
+    fn write_error(&self, e: anyhow::Error) -> anyhow::Error {
+        crate::output::trace::cannot_write(self.file.partial_path(), e)
     }
 
     /// Writes the last rows and closes the file, renamed onto `name` instead of its final
@@ -159,15 +156,12 @@ impl SweepWriter {
     fn close(mut self, name: Option<&Path>) -> anyhow::Result<(u64, bool)> {
         self.flush()?;
         let out = match self.sink {
-            Writer::Arrow(w) => w.finish().map_err(|e| e.to_string()),
-            Writer::Parquet(w) => w.into_inner().map_err(|e| e.to_string()),
+            Writer::Arrow(w) => w.finish().map_err(anyhow::Error::from),
+            Writer::Parquet(w) => w.into_inner().map_err(anyhow::Error::from),
         };
-        let out = out.map_err(|e| {
-            anyhow::anyhow!(
-                "cannot write output file {}: {e}",
-                self.file.partial_path().display()
-            )
-        })?;
+        let failed = |e| crate::output::trace::cannot_write(self.file.partial_path(), e);
+        let mut out = out.map_err(failed)?;
+        std::io::Write::flush(&mut out).map_err(|e| failed(e.into()))?;
         let made = match name {
             None => {
                 // A finished sweep makes an interrupted one to the same path obsolete.
