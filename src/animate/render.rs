@@ -123,12 +123,7 @@ fn stopped(stop: &AtomicUsize, out: &Path) -> anyhow::Result<()> {
     if signal == 0 {
         return Ok(());
     }
-    let name = match signal as i32 {
-        signal_hook::consts::SIGINT => "SIGINT".to_string(),
-        signal_hook::consts::SIGTERM => "SIGTERM".to_string(),
-        signal_hook::consts::SIGHUP => "SIGHUP".to_string(),
-        n => format!("signal {n}"),
-    };
+    let name = crate::run::signal_name(signal);
     Err(Interrupted {
         code: (128 + signal).min(255) as u8,
         message: format!(

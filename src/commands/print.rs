@@ -6,7 +6,7 @@
 use std::io::Write;
 use std::path::Path;
 
-pub use crate::run::shown;
+pub use crate::run::{shown, tell};
 
 /// Writes what a command has to say about its output `out` (`what`: "the sweep's summary"
 /// ...): to stdout, or to stderr when the output itself goes to stdout (`-`).
@@ -28,12 +28,6 @@ pub fn print_out(what: &str, text: &str) -> anyhow::Result<()> {
         .map_err(|e| {
             anyhow::Error::new(e).context(format!("cannot write {what} to standard output"))
         })
-}
-
-/// Writes `text` to stderr. A failure is not reported (there is nowhere left to report it)
-/// and never panics, as `eprint!` does.
-pub fn tell(text: &str) {
-    let _ = std::io::stderr().lock().write_all(text.as_bytes());
 }
 
 /// Whether `e` comes from a closed pipe (`touchdown report s.arrow | head -1`, a reader of

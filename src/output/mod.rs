@@ -191,8 +191,13 @@ impl AtomicFile {
     }
 
     fn finish(mut self, mut writer: Out, rename_to: Option<&Path>) -> anyhow::Result<()> {
-        let shown = self.partial_path().display().to_string();
-        let context = |e: std::io::Error| anyhow::anyhow!("cannot finish output {shown}: {e}");
+        let shown = match self.target {
+            Target::Stdout => "standard output".to_string(),
+            _ => format!("output file {}", self.partial_path().display()),
+        };
+        // The system's error stays the source (a closed pipe is told apart by its kind).
+        let context =
+            |e: std::io::Error| anyhow::Error::new(e).context(format!("cannot write {shown}"));
         writer.flush().map_err(context)?;
         let sink = writer.into_inner().map_err(|e| context(e.into_error()))?;
         if let (Sink::File(file), Some(path), Target::Regular { partial, .. }) =

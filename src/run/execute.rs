@@ -2,7 +2,7 @@
 //! with their progress bar, and the file finished or left valid when a signal stops it.
 
 use super::plan::SweepPlan;
-use super::workers::{CHUNK, Interrupted, shown};
+use super::workers::{CHUNK, Interrupted, shown, tell};
 use crate::output::sweep::{SweepInfo, SweepWriter};
 use crate::reference::{Model, Outcome};
 use crate::scenario::Scenario;
@@ -51,17 +51,20 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     let kept = plan.resume.as_ref().map_or(0, |r| r.kept_rows());
     let mut writer = create_writer(plan, &model)?;
     if run.banner {
-        eprintln!("{}", banner(plan, &range, kept, threads, run.auto_kernel));
+        tell(&format!(
+            "{}\n",
+            banner(plan, &range, kept, threads, run.auto_kernel)
+        ));
     }
     let stale = crate::output::interrupted_path(&plan.out);
     if plan.resume.is_none() && stale.exists() {
-        eprintln!(
+        tell(&format!(
             "touchdown: note: {} holds an interrupted sweep to {}; this run replaces it when \
-             it ends (to continue that one instead, stop this run and use {})",
+             it ends (to continue that one instead, stop this run and use {})\n",
             stale.display(),
             plan.out.display(),
             plan.continue_with
-        );
+        ));
     }
     let mut counts = [0u64; Outcome::ALL.len()];
     let mut steps = 0u64;
@@ -250,13 +253,13 @@ fn interrupted(
 /// `at` names the sweep among several (a study's value), or is empty.
 pub fn warn_untouched(done: &Executed, scenario: &Scenario, at: &str) {
     if done.untouched > 0 {
-        eprintln!(
+        tell(&format!(
             "touchdown: warning: {at}{} of the {} samples run never touched the \
              surface before simulation.t_max_s = {} s (their first_contact_s is empty: they \
              end bouncing, or tipped if they turned past 90 deg in flight). A release too \
              high or an upward velocity error for the run's length? See \
-             initial.clearance_m, inputs.release_height_m and inputs.velocity_error_z_m_s",
+             initial.clearance_m, inputs.release_height_m and inputs.velocity_error_z_m_s\n",
             done.untouched, done.computed, scenario.simulation.t_max_s
-        );
+        ));
     }
 }

@@ -35,7 +35,8 @@ pub fn lock_folder(dir: &Path, shard: bool) -> anyhow::Result<FolderLock> {
 pub fn refuse_other_study(dir: &Path, id: &StudyId<'_>, files: &[PathBuf]) -> anyhow::Result<()> {
     let elsewhere = "give this study another --out-dir, or remove the other study's files";
     let table = dir.join("study.arrow");
-    if table.exists() {
+    // A table there (not a device or FIFO the user put in its place) must be this study's.
+    if std::fs::metadata(&table).is_ok_and(|m| m.is_file()) {
         let meta = crate::output::read::format_of(&table)
             .and_then(|f| crate::output::read::open(&table, f))
             .map(|(schema, _)| schema.metadata().clone())

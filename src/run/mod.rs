@@ -16,4 +16,4 @@ mod workers;
 pub use execute::{Executed, RunOptions, execute, warn_untouched};
 pub use load::{KernelChoice, load_scenario, scenario_from_toml, scenario_of_sweep};
 pub use plan::{SweepPlan, SweepSettings, output_format};
-pub use workers::{CHUNK, Interrupted, shown, stop_on_signals, worker_pool};
+pub use workers::{CHUNK, Interrupted, shown, signal_name, stop_on_signals, tell, worker_pool};

@@ -53,10 +53,9 @@ pub fn stop_on_signals() -> anyhow::Result<std::sync::Arc<std::sync::atomic::Ato
                     first = Some(now);
                     seen.store(signal as usize, Ordering::SeqCst);
                 } else if ends_at_once(signal, first, now) {
-                    let _ = writeln!(
-                        std::io::stderr(),
-                        "touchdown: stopped at once by a second Ctrl-C; the unfinished \
-                         output keeps its temporary name"
+                    tell(
+                        "touchdown: stopped at once by a second Ctrl-C; the unfinished output \
+                         keeps its temporary name\n",
                     );
                     std::process::exit(128 + SIGINT);
                 }
@@ -93,6 +92,13 @@ pub fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> 
     Ok(rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()?)
+}
+
+/// Writes `text` to stderr. A failure is not reported (there is nowhere left to report it)
+/// and never panics, as `eprint!` does (where stderr is gone: a closed terminal after
+/// SIGHUP).
+pub fn tell(text: &str) {
+    let _ = std::io::stderr().lock().write_all(text.as_bytes());
 }
 
 /// An output path as messages name it (`-` is standard output).
