@@ -462,3 +462,51 @@ fn timeout_leaves_a_resumable_sweep_every_time() {
     touchdown(dir.path(), &["sweep", "--resume", "t0.arrow", "--quiet"]).assert_done();
     assert_eq!(metadata(&dir.join("t0.arrow"), "rows"), "600000");
 }
+
+#[test]
+fn a_signal_ends_any_command_without_an_unfinished_file() {
+    let dir = TempDir::new("collide-signal-merge");
+    dir.write("short.toml", SHORT);
+    let shard = [
+        "sweep",
+        "--scenario",
+        "short.toml",
+        "--samples",
+        "300000",
+        "--shard",
+        "0/1",
+    ];
+    touchdown(
+        dir.path(),
+        &[&shard[..], &["--out", "sh.arrow", "--quiet"]].concat(),
+    )
+    .assert_done();
+    // A merge takes some 0.6 s here: signalled as soon as its temporary file appears, it
+    // is stopped at most times; one that finished first is complete, and tried again.
+    let mut stopped = 0;
+    for attempt in 0..5 {
+        let child = start(&dir, &["merge", "sh.arrow", "--out", "m.parquet"]);
+        wait_for(&dir.join("m.parquet.partial"));
+        let sent = Command::new("kill")
+            .args(["-TERM", &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let out = child.wait_with_output().unwrap();
+        assert!(!dir.join("m.parquet.partial").exists(), "attempt {attempt}");
+        match out.status.code() {
+            Some(143) => {
+                assert!(!dir.join("m.parquet").exists(), "attempt {attempt}");
+                assert!(
+                    String::from_utf8_lossy(&out.stderr)
+                        .contains("interrupted by SIGTERM: its unfinished output removed"),
+                    "{out:?}"
+                );
+                stopped += 1;
+            }
+            Some(0) => std::fs::remove_file(dir.join("m.parquet")).unwrap(),
+            code => panic!("attempt {attempt}: exit {code:?}: {out:?}"),
+        }
+    }
+    assert!(stopped > 0, "no merge was stopped by the signal");
+}

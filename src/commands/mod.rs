@@ -92,6 +92,9 @@ pub fn main() -> std::process::ExitCode {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
+    // A signal ends any command without leaving an unfinished file (a sweep, a study and
+    // an animation take it over to stop cleanly).
+    crate::run::end_on_signals()?;
     crate::output::inputs::declare(&inputs_of(&cli.command));
     // Standard output redirected into an input (`report s.arrow >> s.arrow`).
     crate::output::inputs::refuse_stdout_as_output()?;

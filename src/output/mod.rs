@@ -107,6 +107,7 @@ impl AtomicFile {
         let sink = match &target {
             Target::Regular { partial, .. } => {
                 let file = lock::create_locked(partial, path)?;
+                unfinished(partial, true);
                 lock = Some(file.try_clone().map_err(|e| {
                     anyhow::anyhow!("cannot write output file {}: {e}", partial.display())
                 })?);
@@ -215,11 +216,41 @@ impl AtomicFile {
 
 impl Drop for AtomicFile {
     fn drop(&mut self) {
-        if let (false, Target::Regular { partial, .. }) = (self.committed, &self.target) {
-            let _ = std::fs::remove_file(partial);
+        if let Target::Regular { partial, .. } = &self.target {
+            if !self.committed {
+                let _ = std::fs::remove_file(partial);
+            }
+            unfinished(partial, false);
         }
         // Only now may another run take the name.
         self.lock.take();
+    }
+}
+
+/// The temporary files of the outputs being written, to remove when a signal ends the
+/// process (`remove_unfinished`).
+static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Adds (`true`) or takes away a temporary file from those being written.
+fn unfinished(partial: &Path, add: bool) {
+    let mut files = UNFINISHED
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if add {
+        files.push(partial.to_path_buf());
+    } else if let Some(i) = files.iter().position(|f| f == partial) {
+        files.swap_remove(i);
+    }
+}
+
+/// Removes the temporary files of every output being written (a signal ends the process):
+/// nothing unfinished is left behind.
+pub fn remove_unfinished() {
+    let files = UNFINISHED
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    for f in files.iter() {
+        let _ = std::fs::remove_file(f);
     }
 }
 

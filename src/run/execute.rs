@@ -226,7 +226,7 @@ fn interrupted(
 ) -> anyhow::Result<anyhow::Error> {
     let signal = run.stop.load(std::sync::atomic::Ordering::Relaxed);
     let (rows, path) = writer.finish_interrupted()?;
-    let name = super::workers::signal_name(signal);
+    let name = super::signals::signal_name(signal);
     let message = match path {
         Some(path) => format!(
             "interrupted by {name}: {rows} of {} samples done, in {} (a valid file); \

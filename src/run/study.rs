@@ -11,7 +11,8 @@
 use super::execute::{RunOptions, execute, warn_untouched};
 use super::load::{KernelChoice, load_scenario, scenario_from_toml};
 use super::plan::SweepPlan;
-use super::workers::{stop_on_signals, worker_pool};
+use super::signals::stop_on_signals;
+use super::workers::worker_pool;
 use crate::output::format::Format;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
