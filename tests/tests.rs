@@ -6,6 +6,7 @@ mod boundary;
 mod cli;
 mod common;
 mod cpus;
+mod hostile_files;
 mod inputs;
 mod interrupt;
 mod lander;
