@@ -221,42 +221,21 @@ fn message(payload: &(dyn std::any::Any + Send)) -> String {
 /// The fixture files, made by the program, and the tables of inputs, written here.
 fn fixtures(dir: &TempDir) {
     dir.write("short.toml", SHORT);
-    let run = |args: &[&str]| {
-        let r = touchdown(dir.path(), args);
+    let run = |args: &str| {
+        let r = touchdown(dir.path(), &args.split(' ').collect::<Vec<_>>());
         assert_eq!(r.code, Some(0), "{r}");
     };
-    let sweep = [
-        "sweep",
-        "--quiet",
-        "--scenario",
-        "short.toml",
-        "--samples",
-        "20",
-    ];
+    let sweep = "sweep --quiet --scenario short.toml";
     for out in ["s.arrow", "s.parquet"] {
-        run(&[&sweep[..], &["--out", out]].concat());
+        run(&format!("{sweep} --samples 20 --out {out}"));
     }
     for (k, out) in ["0/2", "1/2"].iter().zip(["sh0.arrow", "sh1.arrow"]) {
-        run(&[&sweep[..], &["--shard", k, "--out", out]].concat());
+        run(&format!("{sweep} --samples 20 --shard {k} --out {out}"));
     }
-    let sobol = [
-        "--design",
-        "sobol-indices",
-        "--samples",
-        "26",
-        "--out",
-        "so.arrow",
-    ];
-    run(&[&sweep[..4], &sobol[..]].concat());
-    run(&[
-        "trace",
-        "--scenario",
-        "short.toml",
-        "--every",
-        "100",
-        "--out",
-        "t.arrow",
-    ]);
+    run(&format!(
+        "{sweep} --design sobol-indices --samples 26 --out so.arrow"
+    ));
+    run("trace --scenario short.toml --every 100 --out t.arrow");
     let batch = RecordBatch::try_new(
         Arc::new(Schema::new(vec![
             Field::new("slope_deg", DataType::Float64, false),
@@ -553,5 +532,61 @@ fn damaged_files_are_refused_never_panic_or_abort() {
         &panics[..panics.len().min(12)],
         runs.len(),
         &runs[..runs.len().min(6)]
+    );
+}
+
+/// A compressed buffer of a table of inputs that says it holds 16 TiB: refused before the
+/// decoder asks for them (an abort on main: "memory allocation of 17592186044416 bytes
+/// failed", exit 134).
+#[test]
+fn a_compressed_table_claiming_terabytes_is_refused() {
+    let dir = TempDir::new("hostile-lz4");
+    dir.write("short.toml", SHORT);
+    let rows = 1000;
+    let batch = RecordBatch::try_new(
+        Arc::new(Schema::new(vec![Field::new(
+            "slope_deg",
+            DataType::Float64,
+            false,
+        )])),
+        vec![Arc::new(Float64Array::from_iter_values(
+            (0..rows).map(|i| f64::from(i % 30)),
+        ))],
+    )
+    .unwrap();
+    let options = arrow_ipc::writer::IpcWriteOptions::default()
+        .try_with_compression(Some(arrow_ipc::CompressionType::LZ4_FRAME))
+        .unwrap();
+    let mut bytes = Vec::new();
+    let mut w =
+        arrow_ipc::writer::FileWriter::try_new_with_options(&mut bytes, &batch.schema(), options)
+            .unwrap();
+    w.write(&batch).unwrap();
+    w.finish().unwrap();
+    drop(w);
+    // The values' buffer: its first 8 bytes are its size decompressed, 8 bytes a row.
+    let size = (8 * rows as i64).to_le_bytes();
+    let at = bytes
+        .windows(8)
+        .position(|w| w == size)
+        .expect("the size prefix");
+    bytes[at..at + 8].copy_from_slice(&(1i64 << 44).to_le_bytes());
+    std::fs::write(dir.join("lz.arrow"), &bytes).unwrap();
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--quiet",
+            "--scenario",
+            "short.toml",
+            "--inputs",
+            "lz.arrow",
+            "--out",
+            "o.arrow",
+        ],
+    );
+    assert!(
+        run.code == Some(2) && run.stderr.contains("lz.arrow") && run.stderr.contains("damaged"),
+        "{run}"
     );
 }

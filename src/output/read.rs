@@ -14,7 +14,7 @@ use crate::reference::Outcome;
 use anyhow::{anyhow, bail};
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;
-pub use check::{arrow_file, parquet_chunks};
+pub use check::{arrow_file, compressed_sizes, parquet_chunks};
 pub use guard::{damaged, guarded};
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use std::fs::File;

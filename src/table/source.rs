@@ -3,7 +3,7 @@
 
 use super::cells::{CellError, arrow_cells, csv_array, csv_cell, csv_error, csv_reader};
 use super::sink::Sink;
-use crate::output::read::{arrow_file, damaged, guarded};
+use crate::output::read::{arrow_file, compressed_sizes, damaged, guarded};
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, ArrayRef, RecordBatch};
 use arrow_schema::{Field, FieldRef, Schema};
@@ -38,7 +38,7 @@ impl Source {
             }
         };
         // Decoded under the guard (a damaged file is refused naming it, never a panic),
-        // an Arrow file's sizes checked first.
+        // Arrow's sizes checked first (what the decoder allocates by).
         let batches: (Vec<RecordBatch>, Arc<Schema>, &'static str) = if bytes.starts_with(b"PAR1") {
             guarded(path, || {
                 let b = parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder::try_new(
@@ -52,6 +52,7 @@ impl Source {
             })?
         } else if bytes.starts_with(b"ARROW1") {
             arrow_file(&mut std::io::Cursor::new(&bytes), bytes.len() as u64)
+                .and_then(|()| compressed_sizes(&bytes, 8))
                 .map_err(|why| damaged(path, &why))?;
             guarded(path, || {
                 let r = arrow_ipc::reader::FileReader::try_new(std::io::Cursor::new(bytes), None)
@@ -61,6 +62,7 @@ impl Source {
                 Ok((batches, schema, "arrow"))
             })?
         } else if bytes.starts_with(&[0xff, 0xff, 0xff, 0xff]) {
+            compressed_sizes(&bytes, 0).map_err(|why| damaged(path, &why))?;
             guarded(path, || {
                 let r = arrow_ipc::reader::StreamReader::try_new(std::io::Cursor::new(bytes), None)
                     .map_err(|e| context(&e))?;

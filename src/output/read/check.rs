@@ -79,3 +79,66 @@ pub fn parquet_chunks(meta: &ParquetMetaData, len: u64) -> Result<(), String> {
     }
     Ok(())
 }
+
+/// The largest ratio of a buffer's size to its compressed size that LZ4 reaches (a byte of
+/// a sequence at most 255 bytes long), and that zstd reaches (an RLE block: 4 bytes make up
+/// to 128 KiB).
+const MAX_RATIO: [(arrow_ipc::CompressionType, u64); 2] = [
+    (arrow_ipc::CompressionType::LZ4_FRAME, 255),
+    (arrow_ipc::CompressionType::ZSTD, 32_768),
+];
+
+/// Checks the compressed buffers of the Arrow IPC messages in `bytes` from `start` (0 for a
+/// stream, 8 for a file): each one's size once decompressed, which the decoder allocates
+/// before it decompresses, must be one its codec can reach from its compressed size.
+pub fn compressed_sizes(bytes: &[u8], start: usize) -> Result<(), String> {
+    let mut at = start;
+    // A file's magic may be padded further, to the writer's alignment (64 bytes).
+    while bytes.get(at..at + 8) == Some(&[0; 8]) {
+        at += 8;
+    }
+    while let Some(head) = bytes.get(at..at + 8) {
+        let len = i32::from_le_bytes([head[4], head[5], head[6], head[7]]);
+        let Ok(len) = usize::try_from(len) else { break };
+        let (Some(meta), true) = (bytes.get(at + 8..at + 8 + len), head[..4] == [0xff; 4]) else {
+            break;
+        };
+        let Ok(message) = arrow_ipc::root_as_message(meta) else {
+            break;
+        };
+        let Ok(body_len) = usize::try_from(message.bodyLength()) else {
+            break;
+        };
+        let body = at + 8 + len;
+        if let Some(batch) = message.header_as_record_batch()
+            && let Some(codec) = batch.compression().map(|c| c.codec())
+        {
+            let ratio = MAX_RATIO
+                .iter()
+                .find(|(c, _)| *c == codec)
+                .map_or(1, |r| r.1);
+            for buffer in batch.buffers().into_iter().flatten() {
+                let (offset, length) = (buffer.offset() as usize, buffer.length() as usize);
+                if length < 8 {
+                    continue;
+                }
+                let Some(prefix) = body
+                    .checked_add(offset)
+                    .and_then(|from| bytes.get(from..from.checked_add(8)?))
+                else {
+                    continue;
+                };
+                let size = i64::from_le_bytes(prefix.try_into().expect("8 bytes"));
+                let most = (length as u64).saturating_mul(ratio);
+                if size != -1 && (size < 0 || size as u64 > most) {
+                    return Err(format!(
+                        "a buffer of {length} bytes compressed says it holds {size} bytes, more \
+                         than its codec can make of it"
+                    ));
+                }
+            }
+        }
+        at = body.saturating_add(body_len);
+    }
+    Ok(())
+}
