@@ -7,6 +7,7 @@ mod cli;
 mod collisions;
 mod common;
 mod cpus;
+mod hostile_files;
 mod inputs;
 mod interrupt;
 mod lander;

@@ -41,7 +41,7 @@ impl Table {
         let mut texts: HashMap<String, Vec<String>> = HashMap::new();
         let mut rows = 0;
         for b in batches {
-            let b = b.map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
+            let b = b?;
             rows += b.num_rows();
             for (field, array) in b.schema().fields().iter().zip(b.columns()) {
                 let name = field.name();

@@ -241,11 +241,11 @@ fn copy_rows(
 ) -> anyhow::Result<()> {
     let mut next = f.range.start;
     for b in open(&f.path, f.format)?.1 {
-        let b = b.map_err(|e| anyhow!("cannot read {}: {e}", f.path.display()))?;
+        let b = b?;
         let samples = b
-            .column(0)
-            .as_any()
-            .downcast_ref::<UInt64Array>()
+            .columns()
+            .first()
+            .and_then(|c| c.as_any().downcast_ref::<UInt64Array>())
             .ok_or_else(|| anyhow!("{}: the sample column is not u64", f.path.display()))?;
         for s in samples.values() {
             if *s != next || next >= f.range.end {

@@ -98,9 +98,7 @@ impl Interrupted {
         };
         let mut rows = 0u64;
         for b in batches {
-            rows += b
-                .map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?
-                .num_rows() as u64;
+            rows += b?.num_rows() as u64;
         }
         Ok(Interrupted {
             format,
@@ -140,7 +138,7 @@ impl Interrupted {
             if next == first + kept {
                 break;
             }
-            let b = b.map_err(|e| anyhow!("cannot read {}: {e}", self.path.display()))?;
+            let b = b?;
             let b = b.slice(0, b.num_rows().min((first + kept - next) as usize));
             let column = |name: &str| {
                 b.column_by_name(name)

@@ -3,6 +3,7 @@
 
 use super::cells::{CellError, arrow_cells, csv_array, csv_cell, csv_error, csv_reader};
 use super::sink::Sink;
+use crate::output::read::{arrow_file, compressed_sizes, damaged, guarded};
 use anyhow::{anyhow, bail};
 use arrow_array::{Array, ArrayRef, RecordBatch};
 use arrow_schema::{Field, FieldRef, Schema};
@@ -36,27 +37,39 @@ impl Source {
                 None => anyhow!("cannot read {}: {text}", path.display()),
             }
         };
+        // Decoded under the guard (a damaged file is refused naming it, never a panic),
+        // Arrow's sizes checked first (what the decoder allocates by).
         let batches: (Vec<RecordBatch>, Arc<Schema>, &'static str) = if bytes.starts_with(b"PAR1") {
-            let b = parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder::try_new(
-                bytes::Bytes::from(bytes),
-            )
-            .map_err(|e| context(&e))?;
-            let schema = b.schema().clone();
-            let r = b.build().map_err(|e| context(&e))?;
-            let batches = r.collect::<Result<Vec<_>, _>>().map_err(|e| context(&e))?;
-            (batches, schema, "parquet")
+            guarded(path, || {
+                let b = parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder::try_new(
+                    bytes::Bytes::from(bytes),
+                )
+                .map_err(|e| context(&e))?;
+                let schema = b.schema().clone();
+                let r = b.build().map_err(|e| context(&e))?;
+                let batches = r.collect::<Result<Vec<_>, _>>().map_err(|e| context(&e))?;
+                Ok((batches, schema, "parquet"))
+            })?
         } else if bytes.starts_with(b"ARROW1") {
-            let r = arrow_ipc::reader::FileReader::try_new(std::io::Cursor::new(bytes), None)
-                .map_err(|e| context(&e))?;
-            let schema = r.schema();
-            let batches = r.collect::<Result<Vec<_>, _>>().map_err(|e| context(&e))?;
-            (batches, schema, "arrow")
+            arrow_file(&mut std::io::Cursor::new(&bytes), bytes.len() as u64)
+                .and_then(|()| compressed_sizes(&bytes, 8))
+                .map_err(|why| damaged(path, &why))?;
+            guarded(path, || {
+                let r = arrow_ipc::reader::FileReader::try_new(std::io::Cursor::new(bytes), None)
+                    .map_err(|e| context(&e))?;
+                let schema = r.schema();
+                let batches = r.collect::<Result<Vec<_>, _>>().map_err(|e| context(&e))?;
+                Ok((batches, schema, "arrow"))
+            })?
         } else if bytes.starts_with(&[0xff, 0xff, 0xff, 0xff]) {
-            let r = arrow_ipc::reader::StreamReader::try_new(std::io::Cursor::new(bytes), None)
-                .map_err(|e| context(&e))?;
-            let schema = r.schema();
-            let batches = r.collect::<Result<Vec<_>, _>>().map_err(|e| context(&e))?;
-            (batches, schema, "arrow")
+            compressed_sizes(&bytes, 0).map_err(|why| damaged(path, &why))?;
+            guarded(path, || {
+                let r = arrow_ipc::reader::StreamReader::try_new(std::io::Cursor::new(bytes), None)
+                    .map_err(|e| context(&e))?;
+                let schema = r.schema();
+                let batches = r.collect::<Result<Vec<_>, _>>().map_err(|e| context(&e))?;
+                Ok((batches, schema, "arrow"))
+            })?
         } else {
             return Source::csv(path, bytes);
         };

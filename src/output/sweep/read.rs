@@ -65,10 +65,9 @@ impl SweepFile {
     /// it.
     pub fn batches(&mut self) -> impl Iterator<Item = anyhow::Result<SweepBatch<'_>>> + '_ {
         let path = self.path.as_path();
-        self.batches.by_ref().map(move |b| {
-            b.map(|batch| SweepBatch { batch, path })
-                .map_err(|e| anyhow!("cannot read {}: {e}", path.display()))
-        })
+        self.batches
+            .by_ref()
+            .map(move |b| b.map(|batch| SweepBatch { batch, path }))
     }
 }
 
