@@ -109,7 +109,7 @@ pub fn search(
             }
         }
         let mut round = scenario.clone();
-        round.table = Some(Arc::new(InputTable::from_samples(&rows)));
+        round.table = Some(Arc::new(InputTable::from_samples(rows.clone())));
         pool.install(|| {
             crate::sweep::run_until(
                 &round,

@@ -22,8 +22,10 @@
 //! column's checked values go), `sha256` (the digest a sweep records).
 
 mod cells;
+mod check;
 mod read;
 mod role;
+mod rows;
 mod sha256;
 mod sink;
 mod source;
