@@ -6,6 +6,7 @@
 pub mod boundary;
 mod execute;
 mod load;
+mod memory;
 mod plan;
 pub mod study;
 pub mod trace;
