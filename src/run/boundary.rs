@@ -201,10 +201,9 @@ fn check_memory(settings: &Settings) -> anyhow::Result<()> {
         .saturating_add(PIECE_ROWS as u64 * 2 * std::mem::size_of::<Sample>() as u64);
     super::memory::check_fits(bytes, || {
         format!(
-            "--max-samples-per-sector {max}: a search that runs up to {max} samples in \
-             each of {SECTORS} sectors (each kept, {BYTES_PER_KEPT} bytes, to find the \
-             sector's interval) may run up to {} samples, and",
-            (SECTORS as u64).saturating_mul(max)
+            "--max-samples-per-sector {max}: the search keeps every sample it runs \
+             ({BYTES_PER_KEPT} bytes each, up to {SECTORS} sectors x {max}) to find each \
+             sector's interval; it"
         )
     })
 }

@@ -29,7 +29,8 @@ pub fn shown_bytes(bytes: u64) -> String {
 pub fn check_fits(bytes: u64, what: impl FnOnce() -> String) -> anyhow::Result<()> {
     match available_bytes() {
         Some(free) if bytes > free => anyhow::bail!(
-            "{} would hold about {} of memory, and this machine has {} available",
+            "{} would hold about {} of memory, and this machine has {} available: ask \
+             for less",
             what(),
             shown_bytes(bytes),
             shown_bytes(free)

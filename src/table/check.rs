@@ -14,7 +14,7 @@ use arrow_schema::DataType;
 use std::path::Path;
 
 /// Rows of a block of the table as the sweep reads it (`rows::FileRows`).
-pub(super) const BLOCK_ROWS: u64 = 65_536;
+pub(super) const BLOCK_ROWS: u64 = 16_384;
 
 /// The most bytes of text a kept text column may hold: an Arrow text column's offsets
 /// are 32-bit.

@@ -1,7 +1,9 @@
 //! The rows of a checked table as the sweep asks for them: read from the file in blocks
-//! of `BLOCK_ROWS`, in order as the sweep goes (one reader, kept from block to block), a
-//! block forgotten once the sweep has written its rows. Memory holds a few blocks, whatever
-//! the table's size.
+//! of `BLOCK_ROWS`, in order as the sweep goes (one reader, kept from block to block). A
+//! sweep asks for each row once: a block's values are forgotten once every row of it has
+//! been asked for, its kept columns once the sweep has written its rows. Memory holds a
+//! block or two of values, and the kept columns of the rows in flight, whatever the
+//! table's size.
 
 use super::cells::csv_array;
 use super::check::{BLOCK_ROWS, fill};
@@ -14,9 +16,10 @@ use arrow_schema::{DataType, Field, FieldRef};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-/// Blocks held at most: more than the sweep has in flight (two windows of samples and a
-/// batch of the output); a block dropped for room is read again if asked for.
-const MAX_BLOCKS: usize = 8;
+/// Blocks held at most, against a caller that asks for rows far apart: more than a sweep
+/// has in flight (two windows of samples and a batch of the output, with 64 threads); a
+/// block dropped for room is read again if asked for.
+const MAX_BLOCKS: usize = 64;
 
 /// The file's size and time of change, as when it was checked.
 type Stamp = (u64, Option<std::time::SystemTime>);
@@ -30,7 +33,11 @@ fn stamp(path: &Path) -> Option<Stamp> {
 struct Block {
     first: u64,
     rows: usize,
+    /// Rows asked for so far: at `rows`, the values go.
+    asked: usize,
+    /// The values (dropped once every row was asked for: `forgotten`).
     sinks: Vec<(usize, Sink)>,
+    forgotten: bool,
     kept: Vec<ArrayRef>,
 }
 
@@ -168,16 +175,22 @@ impl FileRows {
         Ok(Block {
             first,
             rows,
+            asked: 0,
             sinks,
+            forgotten: false,
             kept,
         })
     }
 
-    /// The place in `state.blocks` of the block of row `row`, read if it is not held.
-    fn block_of(&self, state: &mut State, row: u64) -> anyhow::Result<usize> {
+    /// The place in `state.blocks` of the block of row `row`, read if it is not held (or,
+    /// for its `values`, if they are gone).
+    fn block_of(&self, state: &mut State, row: u64, values: bool) -> anyhow::Result<usize> {
         let b = row / BLOCK_ROWS;
         if let Some(i) = state.blocks.iter().position(|k| k.first == b * BLOCK_ROWS) {
-            return Ok(i);
+            if !values || !state.blocks[i].forgotten {
+                return Ok(i);
+            }
+            state.blocks.remove(i);
         }
         let written = state.written;
         state.blocks.retain(|k| k.first + k.rows as u64 > written);
@@ -200,12 +213,17 @@ impl RowSource for FileRows {
         if state.failed.is_some() || row >= self.rows {
             return out;
         }
-        match self.block_of(&mut state, row) {
+        match self.block_of(&mut state, row, true) {
             Ok(i) => {
-                let block = &state.blocks[i];
+                let block = &mut state.blocks[i];
                 let at = (row - block.first) as usize;
                 for (_, sink) in &block.sinks {
                     sink.give(at, &mut out);
+                }
+                block.asked += 1;
+                if block.asked == block.rows {
+                    block.sinks = Vec::new();
+                    block.forgotten = true;
                 }
             }
             Err(e) => state.failed = Some(format!("{e:#}")),
@@ -229,7 +247,7 @@ impl RowSource for FileRows {
         let end = first + rows as u64;
         let mut at = first;
         while at < end && !self.kept_fields.is_empty() {
-            let i = self.block_of(&mut state, at)?;
+            let i = self.block_of(&mut state, at, false)?;
             let block = &state.blocks[i];
             let from = (at - block.first) as usize;
             let take = (block.rows - from).min((end - at) as usize);

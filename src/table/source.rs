@@ -120,10 +120,15 @@ pub(super) fn head(path: &Path) -> anyhow::Result<Head> {
     })
 }
 
-/// The head of a CSV file from its first bytes `first`: refused if they are not text.
+/// The head of a CSV file from its first bytes `first`: refused if its first line is not
+/// text (the rest of the text is checked as the file streams, after the header's names).
 fn csv_head(path: &Path, first: &[u8]) -> anyhow::Result<Head> {
-    if let Err(e) = std::str::from_utf8(first)
-        && e.error_len().is_some()
+    let line = first
+        .iter()
+        .position(|&b| b == b'\n')
+        .map_or(first, |end| &first[..end]);
+    if let Err(e) = std::str::from_utf8(line)
+        && (e.error_len().is_some() || line.len() < first.len())
     {
         bail!(
             "{} is neither Parquet, Arrow nor CSV text (not UTF-8 at byte {})",
