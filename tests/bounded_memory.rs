@@ -26,7 +26,10 @@ unsafe extern "C" {
 
 /// Runs `touchdown ARGS` in `dir` and reads its peak resident memory from the kernel's
 /// account of that child alone (`wait4`), so that no other test's child counts.
-#[allow(clippy::zombie_processes, reason = "reaped by wait4, which std does not know of")]
+#[allow(
+    clippy::zombie_processes,
+    reason = "reaped by wait4, which std does not know of"
+)]
 fn run_measured(dir: &Path, args: &[&str]) -> Measured {
     let mut child = std::process::Command::new(BIN)
         .args(args)

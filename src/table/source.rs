@@ -16,6 +16,10 @@ use std::path::Path;
 /// Parquet's cut to this many rows).
 pub(super) const CHUNK_ROWS: usize = 8192;
 
+/// Bytes of CSV text per chunk, at most (after the record that passes them): rows of long
+/// text come a few at a time.
+const CHUNK_BYTES: usize = 16 << 20;
+
 /// The kind of a table's file.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Kind {
@@ -365,11 +369,14 @@ impl Rows {
         let chunk = if let Reader::Csv(r) = &mut self.reader {
             let mut records = Vec::new();
             let mut record = csv::StringRecord::new();
+            let mut bytes = 0;
             while records.len() < CHUNK_ROWS.min(max)
+                && bytes < CHUNK_BYTES
                 && r.read_record(&mut record)
                     .map_err(|e| super::cells::csv_error(&e, path))?
             {
                 let line = record.position().map_or(0, csv::Position::line);
+                bytes += record.as_slice().len();
                 records.push((record.clone(), line));
             }
             (!records.is_empty()).then_some(Chunk::Csv(records))
