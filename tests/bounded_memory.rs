@@ -7,7 +7,7 @@
 use crate::common::{BIN, TempDir, touchdown};
 use arrow_array::{Float64Array, RecordBatch};
 use arrow_schema::{DataType, Field, Schema};
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -24,26 +24,64 @@ unsafe extern "C" {
     fn wait4(pid: i32, status: *mut i32, options: i32, rusage: *mut i64) -> i32;
 }
 
-/// Runs `touchdown ARGS` in `dir` and reads its peak resident memory from the kernel's
-/// account of that child alone (`wait4`), so that no other test's child counts.
+/// The variable that makes `peak_rss_helper` run touchdown: its folder, then its arguments,
+/// separated by `\x1f`.
+const HELPER_ARGS: &str = "TOUCHDOWN_PEAK_RSS_ARGS";
+
+/// Runs `touchdown ARGS` in `dir` and measures its peak resident memory. Linux counts in a
+/// child's peak the peak of the process that started it (the memory it shared until its
+/// `exec`), and this test process may hold much: so a fresh, small process of this test
+/// binary (`peak_rss_helper`) starts touchdown and reads the kernel's account of that
+/// child alone (`wait4`).
+fn run_measured(dir: &Path, args: &[&str]) -> Measured {
+    let mut spec = vec![dir.to_str().expect("a UTF-8 path")];
+    spec.extend_from_slice(args);
+    let out = std::process::Command::new(std::env::current_exe().expect("the test binary"))
+        .args([
+            "--exact",
+            "bounded_memory::peak_rss_helper",
+            "--nocapture",
+            "--test-threads=1",
+        ])
+        .env(HELPER_ARGS, spec.join("\x1f"))
+        .output()
+        .expect("run the helper");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let field = |key: &str| -> Option<String> {
+        // libtest prints the test's name on the line before the helper's words.
+        let at = stdout.find("PEAK_RSS ")?;
+        let line = stdout[at..].lines().next()?;
+        let v = line.split_whitespace().find_map(|w| w.strip_prefix(key))?;
+        Some(v.to_string())
+    };
+    Measured {
+        code: field("code=").and_then(|c| c.parse().ok()),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+        peak_rss: field("bytes=")
+            .and_then(|b| b.parse().ok())
+            .unwrap_or_else(|| panic!("no measurement from the helper:\n{stdout}")),
+    }
+}
+
+/// Not a test of its own: run by `run_measured` in a process of its own, it runs
+/// touchdown as `HELPER_ARGS` says and prints its exit code and peak resident memory.
+#[test]
 #[allow(
     clippy::zombie_processes,
     reason = "reaped by wait4, which std does not know of"
 )]
-fn run_measured(dir: &Path, args: &[&str]) -> Measured {
-    let mut child = std::process::Command::new(BIN)
-        .args(args)
+fn peak_rss_helper() {
+    let Ok(spec) = std::env::var(HELPER_ARGS) else {
+        return;
+    };
+    let mut spec = spec.split('\x1f');
+    let dir = spec.next().expect("a folder");
+    let child = std::process::Command::new(BIN)
+        .args(spec)
         .current_dir(dir)
         .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("run the touchdown binary");
-    let mut pipe = child.stderr.take().expect("piped");
-    let reader = std::thread::spawn(move || {
-        let mut text = String::new();
-        pipe.read_to_string(&mut text).expect("stderr is UTF-8");
-        text
-    });
     let pid = i32::try_from(child.id()).expect("a pid");
     let mut status = 0i32;
     // `struct rusage` on 64-bit Linux: two `timeval`s (4 longs), then `ru_maxrss` (KiB)
@@ -53,13 +91,12 @@ fn run_measured(dir: &Path, args: &[&str]) -> Measured {
     // (144 bytes on 64-bit Linux); `pid` is our child, reaped here and nowhere else.
     let got = unsafe { wait4(pid, &raw mut status, 0, usage.as_mut_ptr()) };
     assert_eq!(got, pid, "wait4 of the touchdown binary");
-    let stderr = reader.join().expect("stderr read");
-    let exited = status & 0x7f == 0;
-    Measured {
-        code: exited.then_some((status >> 8) & 0xff),
-        stderr,
-        peak_rss: u64::try_from(usage[4]).expect("a size") * 1024,
-    }
+    let code = if status & 0x7f == 0 {
+        ((status >> 8) & 0xff).to_string()
+    } else {
+        "none".to_string()
+    };
+    println!("PEAK_RSS code={code} bytes={}", usage[4] * 1024);
 }
 
 /// A Parquet file of `rows` rows of one column, `slope_deg` = 10, in row groups of 2^20
