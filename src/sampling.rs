@@ -66,9 +66,10 @@ const SOBOL_KEY: u64 = 0x5eed_0f50_b01d_5e9a;
 /// With a table of inputs (`Scenario::table`), row `index` gives the values it has (and,
 /// where it has them, the sample's seed and terrain); the others are drawn as without one.
 fn drawn(scenario: &Scenario, index: u64) -> Sample {
-    let table = scenario.table.as_deref();
-    let seed = table
-        .and_then(|t| t.sample_seed(index))
+    // The table's row, read once (a file's rows come in blocks, behind a lock).
+    let row = scenario.table.as_deref().map(|t| t.row(index));
+    let seed = row
+        .and_then(|r| r.sample_seed)
         .unwrap_or_else(|| sample_seed(scenario.seed, index));
     let dists = value_dists(scenario);
     let grid = grid_indices(&grid_dists(scenario), index);
@@ -77,7 +78,7 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
     // coordinate q of point `index` of the scrambled Sobol sequence.
     let mut dimension = 0;
     for (k, ((v, d), g)) in values.iter_mut().zip(&dists).zip(grid).enumerate() {
-        if let Some(x) = table.and_then(|t| t.value(k, index)) {
+        if let Some(x) = row.and_then(|r| r.values[k]) {
             *v = x;
             continue;
         }
@@ -103,13 +104,10 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
     } else {
         (0, [0.0, 0.0])
     };
-    let (terrain_tile, terrain_offset_m) = match table.map(|t| t.terrain(index)) {
-        Some((tile, [u, v])) => (
-            tile.unwrap_or(terrain_tile),
-            [
-                u.unwrap_or(terrain_offset_m[0]),
-                v.unwrap_or(terrain_offset_m[1]),
-            ],
+    let (terrain_tile, terrain_offset_m) = match row {
+        Some(r) => (
+            r.terrain_tile.unwrap_or(terrain_tile),
+            [0, 1].map(|j| r.terrain_offset_m[j].unwrap_or(terrain_offset_m[j])),
         ),
         None => (terrain_tile, terrain_offset_m),
     };

@@ -3,6 +3,7 @@
 mod agreement;
 mod animate;
 mod boundary;
+mod bounded_memory;
 mod cli;
 mod collisions;
 mod common;

@@ -65,6 +65,7 @@ pub fn search(
     progress: bool,
 ) -> anyhow::Result<Search> {
     let dist = slope_distribution(&scenario)?;
+    check_memory(settings)?;
     let range = dist.support();
     // Candidates are independent draws; a row of a round takes a candidate's values.
     let design = scenario.design;
@@ -95,30 +96,30 @@ pub fn search(
             .iter()
             .map(|s| next_upper(s.allowable, range, settings.tolerance))
             .collect();
-        let (rows, row_sector, got) =
-            draw_round(&scenario, dist, &wanted, &upper, &mut next_candidate);
+        let mut draw = RoundDraw::new(&wanted, next_candidate);
         for (k, sector) in sectors.iter_mut().enumerate() {
             if wanted[k] > 0 {
                 sector.rounds.push(Round {
                     upper_deg: upper[k],
-                    samples: Vec::with_capacity(got[k] as usize),
+                    samples: Vec::new(),
                 });
-                if got[k] == 0 {
-                    sector.stop = Some(Stop::Unreached);
-                }
             }
         }
-        let mut round = scenario.clone();
-        round.table = Some(Arc::new(InputTable::from_samples(&rows)));
-        pool.install(|| {
-            crate::sweep::run_until(
-                &round,
-                &model,
-                isa,
-                0..rows.len() as u64,
-                CHUNK,
-                &never,
-                |ran| {
+        // The round in pieces of at most `PIECE_ROWS` rows, each run when drawn: the same
+        // rows in the same order as the round at once (a row's results are its sample's),
+        // in memory of one piece.
+        let mut ran_round = 0u64;
+        loop {
+            let (rows, row_sector) = draw.piece(&scenario, dist, &upper, &mut next_candidate);
+            if rows.is_empty() {
+                break;
+            }
+            ran_round += rows.len() as u64;
+            let count = rows.len() as u64;
+            let mut round = scenario.clone();
+            round.table = Some(Arc::new(InputTable::from_samples(rows)));
+            pool.install(|| {
+                crate::sweep::run_until(&round, &model, isa, 0..count, CHUNK, &never, |ran| {
                     for r in ran {
                         let k = row_sector[r.sample.index as usize];
                         let stable = r.summary.outcome == Outcome::Stable;
@@ -126,17 +127,23 @@ pub fn search(
                         last.samples.push((r.sample.inputs.slope_deg, stable));
                     }
                     Ok(())
-                },
-            )
-        })?;
-        total += rows.len() as u64;
+                })
+            })?;
+        }
+        let got = draw.got;
+        for (k, sector) in sectors.iter_mut().enumerate() {
+            if wanted[k] > 0 && got[k] == 0 {
+                sector.stop = Some(Stop::Unreached);
+            }
+        }
+        total += ran_round;
         close_round(&mut sectors, &wanted, &got, &upper, range, settings);
         if progress {
             let open = sectors.iter().filter(|s| s.stop.is_none()).count();
             eprintln!(
-                "touchdown boundary: round {}: {} samples ({total} in all), {open} sectors open",
+                "touchdown boundary: round {}: {ran_round} samples ({total} in all), {open} \
+                 sectors open",
                 sectors.iter().map(|s| s.rounds.len()).max().unwrap_or(0),
-                rows.len()
             );
         }
     }
@@ -175,6 +182,32 @@ fn close_round(
     }
 }
 
+/// Bytes a search holds per sample it keeps: its slope and outcome (16), with room for
+/// its sector's vector to grow (16 more).
+const BYTES_PER_KEPT: u64 = 32;
+
+/// Bytes a sector's interval takes per sample of it while it is found
+/// (`pooled_allowable`: each sample with its round, and the counts at each slope).
+const BYTES_PER_POOLED: u64 = 48;
+
+/// Refuses a search whose samples would not fit in memory: each sector keeps up to
+/// `--max-samples-per-sector` samples, and a round runs in pieces of `PIECE_ROWS`.
+fn check_memory(settings: &Settings) -> anyhow::Result<()> {
+    let max = settings.max_samples_per_sector;
+    let bytes = (SECTORS as u64)
+        .saturating_mul(max)
+        .saturating_mul(BYTES_PER_KEPT)
+        .saturating_add(max.saturating_mul(BYTES_PER_POOLED))
+        .saturating_add(PIECE_ROWS as u64 * 2 * std::mem::size_of::<Sample>() as u64);
+    super::memory::check_fits(bytes, || {
+        format!(
+            "--max-samples-per-sector {max}: the search keeps every sample it runs \
+             ({BYTES_PER_KEPT} bytes each, up to {SECTORS} sectors x {max}) to find each \
+             sector's interval; it"
+        )
+    })
+}
+
 /// The slope distribution of `scenario`, refused where the search cannot draw below a bound
 /// or cannot keep the scenario's grid of control-law parameters.
 fn slope_distribution(scenario: &Scenario) -> anyhow::Result<Dist> {
@@ -195,33 +228,57 @@ fn slope_distribution(scenario: &Scenario) -> anyhow::Result<Dist> {
     Ok(dist)
 }
 
-/// The rows of one round: candidates drawn in order from `next`, each kept for its sector
-/// while the sector wants more (`wanted`), its slope redrawn below the sector's upper slope
-/// (`upper`); with the sector of each row and the rows each sector got.
-fn draw_round(
-    scenario: &Scenario,
-    dist: Dist,
-    wanted: &[u64],
-    upper: &[f64],
-    next: &mut u64,
-) -> (Vec<Sample>, Vec<usize>, [u64; SECTORS]) {
-    let want: u64 = wanted.iter().sum();
-    let mut got = [0u64; SECTORS];
-    let mut rows: Vec<Sample> = Vec::with_capacity(want as usize);
-    let mut row_sector: Vec<usize> = Vec::with_capacity(want as usize);
-    let budget = *next + DRAWS_PER_WANTED * want;
-    while (rows.len() as u64) < want && *next < budget {
-        let s = sampling::sample(scenario, *next);
-        *next += 1;
-        let k = sector_of(relative_azimuth_deg(
-            s.inputs.downhill_azimuth_deg,
-            s.inputs.yaw_deg,
-        ));
-        if got[k] < wanted[k] {
-            got[k] += 1;
-            rows.push(with_slope_below(s, dist, upper[k]));
-            row_sector.push(k);
+/// Rows of a round run at once, at most: about 200 bytes of sample each, twice (the rows
+/// and the table made of them).
+const PIECE_ROWS: usize = 65_536;
+
+/// The drawing of one round's rows: candidates drawn in order, each kept for its sector
+/// while the sector wants more (`wanted`), its slope redrawn below the sector's upper
+/// slope, until every sector has its rows or the candidates allowed run out.
+struct RoundDraw {
+    wanted: [u64; SECTORS],
+    /// Rows each sector got so far.
+    got: [u64; SECTORS],
+    /// The candidate at which the round gives up.
+    budget: u64,
+}
+
+impl RoundDraw {
+    fn new(wanted: &[u64], next: u64) -> RoundDraw {
+        let want: u64 = wanted.iter().sum();
+        RoundDraw {
+            wanted: std::array::from_fn(|k| wanted[k]),
+            got: [0; SECTORS],
+            budget: next.saturating_add(DRAWS_PER_WANTED.saturating_mul(want)),
         }
     }
-    (rows, row_sector, got)
+
+    /// The next rows of the round, at most `PIECE_ROWS` (none once it is complete), drawn
+    /// from candidate `next` on, with the sector of each row.
+    fn piece(
+        &mut self,
+        scenario: &Scenario,
+        dist: Dist,
+        upper: &[f64],
+        next: &mut u64,
+    ) -> (Vec<Sample>, Vec<usize>) {
+        let want: u64 = self.wanted.iter().sum();
+        let left = (want - self.got.iter().sum::<u64>()).min(PIECE_ROWS as u64) as usize;
+        let mut rows: Vec<Sample> = Vec::with_capacity(left);
+        let mut row_sector: Vec<usize> = Vec::with_capacity(left);
+        while rows.len() < left && *next < self.budget {
+            let s = sampling::sample(scenario, *next);
+            *next += 1;
+            let k = sector_of(relative_azimuth_deg(
+                s.inputs.downhill_azimuth_deg,
+                s.inputs.yaw_deg,
+            ));
+            if self.got[k] < self.wanted[k] {
+                self.got[k] += 1;
+                rows.push(with_slope_below(s, dist, upper[k]));
+                row_sector.push(k);
+            }
+        }
+        (rows, row_sector)
+    }
 }

@@ -8,6 +8,7 @@ mod eta;
 mod execute;
 mod folder;
 mod load;
+mod memory;
 mod plan;
 mod signals;
 pub mod study;

@@ -306,6 +306,14 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
     if samples == 0 {
         bail!("--samples must be at least 1");
     }
+    // Each value's samples are read back for its allowable slopes (`study::Row::read`):
+    // slope and outcome, 16 bytes each, with room for their vectors to grow.
+    super::memory::check_fits(samples.saturating_mul(32), || {
+        format!(
+            "--samples {samples}: a study reads each value's samples back (32 bytes each) \
+             for the allowable slope of each sector; it"
+        )
+    })?;
     let dir = &args.out_dir;
     if dir.exists() && !dir.is_dir() {
         bail!("--out-dir {}: that is a file, not a folder", dir.display());

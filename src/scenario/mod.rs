@@ -49,5 +49,5 @@ pub use reader::DEFAULT_TOML;
 pub use sample::Sample;
 pub use simulation::Simulation;
 pub use surface::{Roughness, Surface};
-pub use table::{InputTable, METADATA_KEYS};
+pub use table::{InputTable, METADATA_KEYS, RowSource, TableRow};
 pub use thrusters::{G0_M_S2, MAX_THRUSTERS, Propulsion, Thruster};

@@ -4,7 +4,7 @@
 use super::inputs::VALUES;
 use super::inputs::value_name;
 use super::sample::Sample;
-use arrow_array::{ArrayRef, RecordBatch};
+use arrow_array::ArrayRef;
 use arrow_schema::FieldRef;
 use std::path::PathBuf;
 
@@ -22,13 +22,9 @@ pub struct InputTable {
     pub columns: Vec<String>,
     /// Whether the columns unknown to the sweep pass through (`--keep-columns`).
     pub keep_columns: bool,
-    /// The table's column for each value of a sample (`Sample::values`), if it has one.
-    pub(crate) values: [Option<Vec<f64>>; VALUES],
-    pub(crate) sample_seed: Option<Vec<u64>>,
-    pub(crate) terrain_tile: Option<Vec<u32>>,
-    pub(crate) terrain_offset_m: [Option<Vec<f64>>; 2],
-    /// The columns passed through to the output, in the table's order.
-    pub(crate) kept: Option<RecordBatch>,
+    /// Where its rows come from: the file, read in blocks as the sweep goes, or rows in
+    /// memory (`from_samples`).
+    pub(crate) source: Box<dyn RowSource>,
 }
 
 impl std::fmt::Debug for InputTable {
@@ -59,50 +55,75 @@ pub const METADATA_KEYS: [&str; 5] = [
     "touchdown.inputs.keep_columns",
 ];
 
+/// What one row of a table gives a sample, where the table has the column.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TableRow {
+    /// Value `k` of the sample (`Sample::values`).
+    pub values: [Option<f64>; VALUES],
+    /// Its generator seed.
+    pub sample_seed: Option<u64>,
+    /// Its terrain tile.
+    pub terrain_tile: Option<u32>,
+    /// Its terrain offset, downhill and cross-slope, m.
+    pub terrain_offset_m: [Option<f64>; 2],
+}
+
+/// Where the rows of a table come from. Rows are asked for from many threads, roughly in
+/// order; the columns passed through once per batch of the output, in order.
+pub trait RowSource: Send + Sync {
+    /// Row `row`. Where the file cannot give it (changed since it was checked), the row
+    /// is empty and `kept_rows` says why.
+    fn row(&self, row: u64) -> TableRow;
+    /// The fields of the columns passed through to the output, in the table's order.
+    fn kept_fields(&self) -> Vec<FieldRef>;
+    /// The columns passed through, rows `first..first + rows`, as fresh arrays; no row
+    /// before `first + rows` is asked for again by the sweep that asks this. An error if a
+    /// row could not be read.
+    fn kept_rows(&self, first: u64, rows: usize) -> anyhow::Result<Vec<ArrayRef>>;
+}
+
+/// Samples in memory as rows: every value, the seed and the terrain.
+struct SampleRows(Vec<Sample>);
+
+impl RowSource for SampleRows {
+    fn row(&self, row: u64) -> TableRow {
+        let s = &self.0[row as usize];
+        TableRow {
+            values: s.values().map(Some),
+            sample_seed: Some(s.seed),
+            terrain_tile: Some(s.terrain_tile),
+            terrain_offset_m: s.terrain_offset_m.map(Some),
+        }
+    }
+
+    fn kept_fields(&self) -> Vec<FieldRef> {
+        Vec::new()
+    }
+
+    fn kept_rows(&self, _: u64, _: usize) -> anyhow::Result<Vec<ArrayRef>> {
+        Ok(Vec::new())
+    }
+}
+
 impl InputTable {
-    /// Value `k` of a sample (`Sample::values`) of row `row`, where the table gives it.
+    /// What row `row` gives its sample.
     #[must_use]
-    pub fn value(&self, k: usize, row: u64) -> Option<f64> {
-        self.values[k].as_ref().map(|c| c[row as usize])
-    }
-
-    /// The generator seed of row `row`, where the table gives it.
-    #[must_use]
-    pub fn sample_seed(&self, row: u64) -> Option<u64> {
-        self.sample_seed.as_ref().map(|c| c[row as usize])
-    }
-
-    /// The terrain tile and offset of row `row`, where the table gives them.
-    #[must_use]
-    pub fn terrain(&self, row: u64) -> (Option<u32>, [Option<f64>; 2]) {
-        let i = row as usize;
-        (
-            self.terrain_tile.as_ref().map(|c| c[i]),
-            [0, 1].map(|j| self.terrain_offset_m[j].as_ref().map(|c| c[i])),
-        )
+    pub fn row(&self, row: u64) -> TableRow {
+        self.source.row(row)
     }
 
     /// The fields of the columns passed through to the output, in the table's order.
     #[must_use]
     pub fn kept_fields(&self) -> Vec<FieldRef> {
-        self.kept
-            .as_ref()
-            .map_or_else(Vec::new, |b| b.schema().fields().iter().cloned().collect())
+        self.source.kept_fields()
     }
 
     /// The columns passed through to the output, rows `first..first + rows`, as fresh
     /// arrays (not slices: the file's bytes do not depend on where a batch was cut from).
+    /// A sweep asks for them in order, once per batch, and no row before `first + rows`
+    /// again.
     pub fn kept_rows(&self, first: u64, rows: usize) -> anyhow::Result<Vec<ArrayRef>> {
-        let Some(b) = &self.kept else {
-            return Ok(Vec::new());
-        };
-        b.columns()
-            .iter()
-            .map(|c| {
-                let piece = c.slice(first as usize, rows);
-                Ok(arrow_select::concat::concat(&[piece.as_ref()])?)
-            })
-            .collect()
+        self.source.kept_rows(first, rows)
     }
 
     /// What a sweep's metadata says of the table (`METADATA_KEYS`).
@@ -126,8 +147,7 @@ impl InputTable {
     /// (`Sample::values`), the generator seed and the terrain tile and offset. `boundary`
     /// runs its candidates through the kernels this way, each with its slope redrawn.
     #[must_use]
-    pub fn from_samples(samples: &[Sample]) -> InputTable {
-        let values: Vec<[f64; VALUES]> = samples.iter().map(Sample::values).collect();
+    pub fn from_samples(samples: Vec<Sample>) -> InputTable {
         InputTable {
             path: PathBuf::from("(boundary search)"),
             format: "memory",
@@ -146,12 +166,7 @@ impl InputTable {
                 )
                 .collect(),
             keep_columns: false,
-            values: std::array::from_fn(|k| Some(values.iter().map(|v| v[k]).collect())),
-            sample_seed: Some(samples.iter().map(|s| s.seed).collect()),
-            terrain_tile: Some(samples.iter().map(|s| s.terrain_tile).collect()),
-            terrain_offset_m: [0, 1]
-                .map(|j| Some(samples.iter().map(|s| s.terrain_offset_m[j]).collect())),
-            kept: None,
+            source: Box::new(SampleRows(samples)),
         }
     }
 }

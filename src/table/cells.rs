@@ -16,7 +16,7 @@ pub(super) enum Cell<'a> {
 }
 
 /// A reader of CSV text with a header row, fields trimmed.
-pub(super) fn csv_reader(text: &[u8]) -> csv::Reader<&[u8]> {
+pub(super) fn csv_reader<R: std::io::Read>(text: R) -> csv::Reader<R> {
     csv::ReaderBuilder::new()
         .has_headers(true)
         .trim(csv::Trim::All)
@@ -52,21 +52,67 @@ pub(super) fn csv_cell(text: &str) -> Cell<'_> {
     }
 }
 
-/// A kept CSV column as an Arrow array: 64-bit integers if every field is one, else
-/// floating-point numbers if every field is one, else text; empty fields are null.
-pub(super) fn csv_array<'a>(fields: impl Iterator<Item = &'a str> + Clone) -> ArrayRef {
-    let cells = || fields.clone().filter(|t| !t.is_empty());
+/// What a kept CSV column holds, field by field: the Arrow type it is kept as (64-bit
+/// integers if every field is one, else floating-point numbers if every field is one, else
+/// text; empty fields are null), and its bytes of text.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct CsvKind {
+    ints: bool,
+    floats: bool,
+    /// Bytes of its fields.
+    pub(super) text_bytes: u64,
+}
+
+impl CsvKind {
+    pub(super) fn new() -> CsvKind {
+        CsvKind {
+            ints: true,
+            floats: true,
+            text_bytes: 0,
+        }
+    }
+
+    /// Takes one more field.
+    pub(super) fn take(&mut self, t: &str) {
+        if t.is_empty() {
+            return;
+        }
+        self.text_bytes += t.len() as u64;
+        // A whole number is a number too: floats need checking once ints fail.
+        if self.ints && t.parse::<i64>().is_err() {
+            self.ints = false;
+        }
+        if !self.ints && self.floats && t.parse::<f64>().is_err() {
+            self.floats = false;
+        }
+    }
+
+    pub(super) fn data_type(&self) -> DataType {
+        if self.ints {
+            DataType::Int64
+        } else if self.floats {
+            DataType::Float64
+        } else {
+            DataType::Utf8
+        }
+    }
+}
+
+/// The fields of a kept CSV column as an Arrow array of type `data_type`
+/// (`CsvKind::data_type`, found over the whole column); empty fields are null.
+pub(super) fn csv_array<'a>(
+    data_type: &DataType,
+    fields: impl Iterator<Item = &'a str>,
+) -> ArrayRef {
     let opt = |t: &'a str| (!t.is_empty()).then_some(t);
-    if cells().all(|t| t.parse::<i64>().is_ok()) {
-        Arc::new(arrow_array::Int64Array::from_iter(
-            fields.map(|t| opt(t).map(|t| t.parse::<i64>().expect("checked"))),
-        ))
-    } else if cells().all(|t| t.parse::<f64>().is_ok()) {
-        Arc::new(arrow_array::Float64Array::from_iter(
-            fields.map(|t| opt(t).map(|t| t.parse::<f64>().expect("checked"))),
-        ))
-    } else {
-        Arc::new(arrow_array::StringArray::from_iter(fields.map(opt)))
+    match data_type {
+        DataType::Int64 => Arc::new(arrow_array::Int64Array::from_iter(
+            fields.map(|t| opt(t).and_then(|t| t.parse::<i64>().ok())),
+        )),
+        DataType::Float64 => Arc::new(arrow_array::Float64Array::from_iter(
+            fields.map(|t| opt(t).and_then(|t| t.parse::<f64>().ok())),
+        )),
+        _ => Arc::new(arrow_array::StringArray::from_iter(fields.map(opt))),
     }
 }
 
@@ -124,18 +170,24 @@ pub(super) fn arrow_cells(
 
 #[cfg(test)]
 mod tests {
-    use super::csv_array;
+    use super::{CsvKind, csv_array};
     use arrow_array::Array;
     use arrow_schema::DataType;
 
     #[test]
     fn csv_columns_keep_their_type() {
-        let ints = csv_array(["1", "", "-3"].into_iter());
-        assert_eq!(ints.data_type(), &DataType::Int64);
-        assert_eq!(ints.null_count(), 1);
-        let floats = csv_array(["1", "2.5"].into_iter());
-        assert_eq!(floats.data_type(), &DataType::Float64);
-        let text = csv_array(["1", "a"].into_iter());
-        assert_eq!(text.data_type(), &DataType::Utf8);
+        let kind = |fields: &[&str]| {
+            let mut k = CsvKind::new();
+            fields.iter().for_each(|t| k.take(t));
+            k
+        };
+        let ints = kind(&["1", "", "-3"]);
+        assert_eq!(ints.data_type(), DataType::Int64);
+        let array = csv_array(&ints.data_type(), ["1", "", "-3"].into_iter());
+        assert_eq!(array.null_count(), 1);
+        assert_eq!(kind(&["1", "2.5"]).data_type(), DataType::Float64);
+        let text = kind(&["1", "a", ""]);
+        assert_eq!(text.data_type(), DataType::Utf8);
+        assert_eq!(text.text_bytes, 2);
     }
 }

@@ -14,16 +14,24 @@
 //! The whole table is read and checked before any sample runs: a value that is not a
 //! number, NaN, infinite, empty or outside what its input allows is refused with its row
 //! and column. The file's SHA-256 goes into the sweep's metadata, and `--resume`, `merge`
-//! and `trace` hold a sweep to the table it ran.
+//! and `trace` hold a sweep to the table it ran. The table is never held whole: its head
+//! is read first (a column the sweep has no use for is refused before any row), then its
+//! bytes stream through the digest, its cells through the checks, and the sweep reads its
+//! rows again, block by block, as it goes.
 //!
 //! The folder: `read` (a table read and checked, attached to a scenario and reattached to
-//! a sweep that ran it), `role` (what each column is to the sweep), `source` (the file as
-//! CSV or Arrow), `cells` (a cell of either, and the kept CSV columns), `sink` (where a
-//! column's checked values go), `sha256` (the digest a sweep records).
+//! a sweep that ran it), `role` (what each column is to the sweep), `source` (the file's
+//! head, and its rows in chunks from any row on: CSV, Arrow or Parquet), `check` (the
+//! first pass: every cell checked, what the sweep must know of the whole table), `rows`
+//! (the rows as the sweep asks for them, in blocks), `cells` (a cell of any format, and
+//! the kept CSV columns), `sink` (where a column's checked values go), `sha256` (the
+//! digest a sweep records, and a CSV file's text checked as it streams).
 
 mod cells;
+mod check;
 mod read;
 mod role;
+mod rows;
 mod sha256;
 mod sink;
 mod source;

@@ -1,124 +1,58 @@
-//! A table of inputs read and checked (`InputTable::read`), attached to the scenario a
+//! A table of inputs read and checked (`read`), attached to the scenario a
 //! sweep runs, and reattached to a sweep file's scenario, held to the same bytes.
 
-use super::role::role;
-use super::sha256::sha256_hex;
-use super::sink::Sink;
-use super::source::Source;
-use crate::scenario::{Design, INPUT_FIELDS, InputTable, METADATA_KEYS, Parameter, Scenario};
-use anyhow::{anyhow, bail};
+use super::check::check;
+use super::role::{Role, role};
+use super::rows::FileRows;
+use super::sha256::file_sha256;
+use super::source::{Kind, head};
+use crate::scenario::{
+    Design, INPUT_FIELDS, InputTable, METADATA_KEYS, Parameter, Scenario, VALUES,
+};
+use anyhow::bail;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-impl InputTable {
-    /// Reads the table at `path` for a sweep of `scenario`, checking every value.
-    pub fn read(path: &Path, keep_columns: bool, scenario: &Scenario) -> anyhow::Result<Self> {
-        let bytes = std::fs::read(path)
-            .map_err(|e| anyhow!("cannot read the input table {}: {e}", path.display()))?;
-        let sha256 = sha256_hex(&bytes);
-        let source = Source::parse(path, bytes)?;
-        let names = source.names();
-        let mut roles = Vec::with_capacity(names.len());
-        for (j, name) in names.iter().enumerate() {
-            if names[..j].contains(name) {
-                bail!("{}: column {name} appears twice", path.display());
-            }
-            roles.push(role(name, keep_columns, scenario, path)?);
-        }
-        let mut sinks: Vec<Sink> = roles.iter().map(|r| Sink::new(*r)).collect();
-        let (rows, kept) = source.fill(&mut sinks, path)?;
-        if rows == 0 {
-            bail!("{}: the table has no rows", path.display());
-        }
-        let mut table = InputTable {
-            path: path.to_path_buf(),
-            format: source.format(),
-            sha256,
-            rows: rows as u64,
-            columns: names.clone(),
-            keep_columns,
-            values: std::array::from_fn(|_| None),
-            sample_seed: None,
-            terrain_tile: None,
-            terrain_offset_m: [None, None],
-            kept,
-        };
-        for sink in sinks {
-            match sink {
-                Sink::Value(k, v) => table.values[k] = Some(v),
-                Sink::Seed(v) => table.sample_seed = Some(v),
-                Sink::Tile(v) => table.terrain_tile = Some(v),
-                Sink::Offset(j, v) => table.terrain_offset_m[j] = Some(v),
-                Sink::Sample | Sink::Kept => {}
-            }
-        }
-        table.check_terrain(scenario)?;
-        Ok(table)
-    }
+/// A table read and checked, and the least and greatest value of each of its value
+/// columns.
+type Read = (InputTable, [Option<(f64, f64)>; VALUES]);
 
-    /// The terrain columns against the surface the sweep will have: a tile the rough
-    /// surface has and an offset inside it, or 0 where the surface is flat.
-    fn check_terrain(&self, scenario: &Scenario) -> anyhow::Result<()> {
-        let rough = &scenario.surface.roughness;
-        let k = INPUT_FIELDS.len() + Parameter::RmsHeightM as usize;
-        let largest = self.values[k].as_ref().map_or_else(
-            || scenario.rms_height_max_m(),
-            |c| c.iter().copied().fold(0.0, f64::max),
-        );
-        let where_ = |row: usize, name: &str, what: String| {
-            anyhow!("{}: row {row}, column {name}: {what}", self.path.display())
-        };
-        if let Some(c) = &self.terrain_tile {
-            for (row, &t) in c.iter().enumerate() {
-                if largest == 0.0 && t != 0 {
-                    return Err(where_(
-                        row,
-                        "terrain_tile",
-                        format!("{t}, but the surface is flat (its only tile is 0)"),
-                    ));
-                }
-                if largest > 0.0 && t as usize >= rough.tiles {
-                    return Err(where_(
-                        row,
-                        "terrain_tile",
-                        format!(
-                            "{t}, but the surface has tiles 0 to {} (surface.roughness.tiles)",
-                            rough.tiles - 1
-                        ),
-                    ));
-                }
-            }
+/// Reads the table at `path` for a sweep of `scenario`, checking every value, holding
+/// none: its head (the columns' names, each refused before any row is read if the sweep
+/// has no use for it), its bytes (their SHA-256, and a CSV file's text), then its cells.
+/// The sweep reads its rows again, block by block, as it goes (`FileRows`).
+fn read(path: &Path, keep_columns: bool, scenario: &Scenario) -> anyhow::Result<Read> {
+    let head = head(path)?;
+    let names = head.names.clone();
+    let mut seen = std::collections::HashSet::with_capacity(names.len());
+    let mut roles: Vec<Role> = Vec::with_capacity(names.len());
+    for name in &names {
+        if !seen.insert(name.as_str()) {
+            bail!("{}: column {name} appears twice", path.display());
         }
-        for (j, name) in ["terrain_offset_u_m", "terrain_offset_v_m"]
-            .iter()
-            .enumerate()
-        {
-            let Some(c) = &self.terrain_offset_m[j] else {
-                continue;
-            };
-            for (row, &x) in c.iter().enumerate() {
-                if largest == 0.0 && x != 0.0 {
-                    return Err(where_(
-                        row,
-                        name,
-                        format!("{x}, but the surface is flat (the offset is 0)"),
-                    ));
-                }
-                if largest > 0.0 && !(0.0..rough.tile_size_m).contains(&x) {
-                    return Err(where_(
-                        row,
-                        name,
-                        format!(
-                            "{x} is outside the tile: values from 0 up to, not including, \
-                             {} m (surface.roughness.tile_size_m)",
-                            rough.tile_size_m
-                        ),
-                    ));
-                }
-            }
-        }
-        Ok(())
+        roles.push(role(name, keep_columns, scenario, path)?);
     }
+    let sha256 = file_sha256(path, head.kind == Kind::Csv)?;
+    let checked = check(path, &head, &roles, scenario)?;
+    let format = head.kind.format();
+    let source = FileRows::new(
+        path,
+        head,
+        checked.marks,
+        checked.rows,
+        &roles,
+        &checked.csv_types,
+    );
+    let table = InputTable {
+        path: path.to_path_buf(),
+        format,
+        sha256,
+        rows: checked.rows,
+        columns: names,
+        keep_columns,
+        source: Box::new(source),
+    };
+    Ok((table, checked.ranges))
 }
 
 /// Reads the table at `path` and makes `scenario` run it: sample `i` takes row `i`'s
@@ -135,15 +69,10 @@ pub fn attach(scenario: &mut Scenario, path: &Path, keep_columns: bool) -> anyho
             path.display()
         );
     }
-    let table = InputTable::read(path, keep_columns, scenario)?;
+    let (table, ranges) = read(path, keep_columns, scenario)?;
     for p in Parameter::ALL {
         let k = INPUT_FIELDS.len() + p as usize;
-        if let Some(c) = &table.values[k] {
-            let (min, max) = c
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                    (a.min(x), b.max(x))
-                });
+        if let Some((min, max)) = ranges[k] {
             // Where the scenario draws it already and the table stays within its
             // distribution's range, the distribution stays: nothing that depends on it
             // changes (the tiles' roughness, the worst corner, a grid's digits), and the

@@ -2,7 +2,7 @@
 
 use super::cells::Cell;
 use super::role::Role;
-use crate::scenario::check_value;
+use crate::scenario::{TableRow, check_value};
 
 /// Where a column's checked values go.
 pub(super) enum Sink {
@@ -30,8 +30,29 @@ impl Sink {
         matches!(self, Sink::Kept)
     }
 
+    /// Forgets the values taken (once they are counted).
+    pub(super) fn clear(&mut self) {
+        match self {
+            Sink::Value(_, v) | Sink::Offset(_, v) => v.clear(),
+            Sink::Seed(v) => v.clear(),
+            Sink::Tile(v) => v.clear(),
+            Sink::Sample | Sink::Kept => {}
+        }
+    }
+
+    /// Gives `row` the `i`-th value taken.
+    pub(super) fn give(&self, i: usize, row: &mut TableRow) {
+        match self {
+            Sink::Value(k, v) => row.values[*k] = Some(v[i]),
+            Sink::Seed(v) => row.sample_seed = Some(v[i]),
+            Sink::Tile(v) => row.terrain_tile = Some(v[i]),
+            Sink::Offset(j, v) => row.terrain_offset_m[*j] = Some(v[i]),
+            Sink::Sample | Sink::Kept => {}
+        }
+    }
+
     /// Takes the cell of row `row`; what is wrong with it, if anything.
-    pub(super) fn take(&mut self, row: usize, cell: Cell<'_>) -> Result<(), String> {
+    pub(super) fn take(&mut self, row: u64, cell: Cell<'_>) -> Result<(), String> {
         let number = |cell: Cell<'_>| -> Result<f64, String> {
             match cell {
                 Cell::Int(i) => Ok(i as f64),
@@ -95,7 +116,7 @@ impl Sink {
             }
             Sink::Sample => {
                 let i = whole(cell, "sample")?;
-                if i != row as i128 {
+                if i != i128::from(row) {
                     return Err(format!(
                         "holds {i}, but the samples are numbered by the table's rows (this \
                          is sample {row}): drop the column, or rename it and pass \

@@ -88,28 +88,38 @@ const MAX_RATIO: [(arrow_ipc::CompressionType, u64); 2] = [
     (arrow_ipc::CompressionType::ZSTD, 32_768),
 ];
 
-/// Checks the compressed buffers of the Arrow IPC messages in `bytes` from `start` (0 for a
+/// Checks the compressed buffers of the Arrow IPC messages in `file` from `start` (0 for a
 /// stream, 8 for a file): each one's size once decompressed, which the decoder allocates
-/// before it decompresses, must be one its codec can reach from its compressed size.
-pub fn compressed_sizes(bytes: &[u8], start: usize) -> Result<(), String> {
+/// before it decompresses, must be one its codec can reach from its compressed size. Reads
+/// the messages' headers and the first 8 bytes of each compressed buffer only.
+pub fn compressed_sizes(file: &mut (impl Read + Seek), start: u64) -> Result<(), String> {
     let mut at = start;
+    let mut read = |at: u64, n: usize| -> Option<Vec<u8>> {
+        file.seek(SeekFrom::Start(at)).ok()?;
+        let mut buf = Vec::new();
+        file.by_ref().take(n as u64).read_to_end(&mut buf).ok()?;
+        (buf.len() == n).then_some(buf)
+    };
     // A file's magic may be padded further, to the writer's alignment (64 bytes).
-    while bytes.get(at..at + 8) == Some(&[0; 8]) {
+    while read(at, 8).as_deref() == Some(&[0; 8]) {
         at += 8;
     }
-    while let Some(head) = bytes.get(at..at + 8) {
+    while let Some(head) = read(at, 8) {
         let len = i32::from_le_bytes([head[4], head[5], head[6], head[7]]);
         let Ok(len) = usize::try_from(len) else { break };
-        let (Some(meta), true) = (bytes.get(at + 8..at + 8 + len), head[..4] == [0xff; 4]) else {
+        if head[..4] != [0xff; 4] {
+            break;
+        }
+        let Some(meta) = read(at + 8, len) else {
             break;
         };
-        let Ok(message) = arrow_ipc::root_as_message(meta) else {
+        let Ok(message) = arrow_ipc::root_as_message(&meta) else {
             break;
         };
-        let Ok(body_len) = usize::try_from(message.bodyLength()) else {
+        let Ok(body_len) = u64::try_from(message.bodyLength()) else {
             break;
         };
-        let body = at + 8 + len;
+        let body = at + 8 + len as u64;
         if let Some(batch) = message.header_as_record_batch()
             && let Some(codec) = batch.compression().map(|c| c.codec())
         {
@@ -118,18 +128,20 @@ pub fn compressed_sizes(bytes: &[u8], start: usize) -> Result<(), String> {
                 .find(|(c, _)| *c == codec)
                 .map_or(1, |r| r.1);
             for buffer in batch.buffers().into_iter().flatten() {
-                let (offset, length) = (buffer.offset() as usize, buffer.length() as usize);
+                let (Ok(offset), Ok(length)) = (
+                    u64::try_from(buffer.offset()),
+                    u64::try_from(buffer.length()),
+                ) else {
+                    continue;
+                };
                 if length < 8 {
                     continue;
                 }
-                let Some(prefix) = body
-                    .checked_add(offset)
-                    .and_then(|from| bytes.get(from..from.checked_add(8)?))
-                else {
+                let Some(prefix) = body.checked_add(offset).and_then(|from| read(from, 8)) else {
                     continue;
                 };
                 let size = i64::from_le_bytes(prefix.try_into().expect("8 bytes"));
-                let most = (length as u64).saturating_mul(ratio);
+                let most = length.saturating_mul(ratio);
                 if size != -1 && (size < 0 || size as u64 > most) {
                     return Err(format!(
                         "a buffer of {length} bytes compressed says it holds {size} bytes, more \
