@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use touchdown::output::columns::Table;
 use touchdown::output::resume::Interrupted;
-use touchdown::scenario::{InputTable, Scenario};
+use touchdown::scenario::Scenario;
 
 /// The masks each chosen byte is flipped with: all bits (a small length turns negative or
 /// huge) and, outside runs of text (the scenario, units, descriptions, where any change
@@ -310,7 +310,7 @@ fn targets(dir: &TempDir) -> Vec<Target> {
         vec![(
             "--inputs",
             1,
-            Box::new(move |p| InputTable::read(p, false, &scenario).map(drop)),
+            Box::new(move |p| touchdown::table::attach(&mut (*scenario).clone(), p, false)),
         )]
     };
     let inputs = || {

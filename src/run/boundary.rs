@@ -140,11 +140,11 @@ pub fn search(
         close_round(&mut sectors, &wanted, &got, &upper, range, settings);
         if progress {
             let open = sectors.iter().filter(|s| s.stop.is_none()).count();
-            eprintln!(
+            super::workers::tell(&format!(
                 "touchdown boundary: round {}: {ran_round} samples ({total} in all), {open} \
-                 sectors open",
+                 sectors open\n",
                 sectors.iter().map(|s| s.rounds.len()).max().unwrap_or(0),
-            );
+            ));
         }
     }
     Ok(Search {

@@ -95,12 +95,12 @@ pub fn scenario_of_sweep(
     }
     let engine = get("touchdown.engine")?;
     if engine != crate::output::ENGINE {
-        eprintln!(
+        super::workers::tell(&format!(
             "touchdown: warning: {} was written by {engine}, this is {}: the trace may differ \
-             from its row",
+             from its row\n",
             path.display(),
             crate::output::ENGINE
-        );
+        ));
     }
     Ok((scenario, crate::scenario::with_seed(&text, seed)))
 }

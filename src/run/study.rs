@@ -347,9 +347,9 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
         .shard
         .map_or(String::new(), |s| format!(", shard {s} of each"));
     if !args.quiet {
-        eprintln!(
+        super::workers::tell(&format!(
             "touchdown study: {} = {} ({} value{}), {samples} samples each{shard_note}, seed {}, \
-         into {}",
+         into {}\n",
             args.vary.key,
             points
                 .iter()
@@ -360,7 +360,7 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
             if points.len() == 1 { "" } else { "s" },
             base.seed,
             dir.display()
-        );
+        ));
     }
     let started = std::time::Instant::now();
     let mut log = String::new();
