@@ -46,7 +46,9 @@ pub fn open(path: &Path, format: Format) -> anyhow::Result<(SchemaRef, Batches)>
     let len = file.metadata().map_err(|e| context(&e))?.len();
     let (schema, batches): (SchemaRef, Box<dyn Iterator<Item = _>>) = match format {
         Format::Arrow => {
-            arrow_file(&mut file, len).map_err(|why| damaged(path, &why))?;
+            arrow_file(&mut file, len)
+                .and_then(|()| compressed_sizes(&mut file, 8))
+                .map_err(|why| damaged(path, &why))?;
             let r = guarded(path, || {
                 arrow_ipc::reader::FileReader::try_new(BufReader::new(file), None)
                     .map_err(|e| context(&e))
