@@ -76,6 +76,26 @@ fn check_failed(
     }
 }
 
+/// Runs every case (its arguments and what its message must say) with `run` and fails,
+/// listing them all, unless each one failed properly on `what`.
+fn assert_all_fail(
+    cases: &[(&[&str], &str)],
+    run: impl Fn(&[&str]) -> (Option<i32>, String),
+    what: &str,
+) {
+    let failures: Vec<String> = cases
+        .iter()
+        .flat_map(|(args, expect)| check_failed(args, run(args), &[expect]))
+        .collect();
+    assert!(
+        failures.is_empty(),
+        "{} of {} commands did not fail properly on {what}:\n\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n\n")
+    );
+}
+
 /// The files the commands below read: a short sweep, a Sobol-indices sweep, two shards
 /// and a trace.
 fn inputs(dir: &TempDir) {
@@ -223,18 +243,10 @@ fn a_full_standard_output_is_an_error() {
             "cannot write the page's summary to standard output",
         ),
     ];
-    let failures: Vec<String> = cases
-        .iter()
-        .flat_map(|(args, expect)| {
-            check_failed(args, with_stdout_full(dir.path(), args), &[expect])
-        })
-        .collect();
-    assert!(
-        failures.is_empty(),
-        "{} of {} commands did not fail properly on a full stdout:\n\n{}",
-        failures.len(),
-        cases.len(),
-        failures.join("\n\n")
+    assert_all_fail(
+        &cases,
+        |args| with_stdout_full(dir.path(), args),
+        "a full stdout",
     );
 }
 
@@ -313,18 +325,10 @@ fn a_full_output_file_is_an_error_naming_it() {
             "cannot write output file st/study.arrow",
         ),
     ];
-    let failures: Vec<String> = cases
-        .iter()
-        .flat_map(|(args, expect)| {
-            check_failed(args, with_stdout_null(dir.path(), args), &[expect])
-        })
-        .collect();
-    assert!(
-        failures.is_empty(),
-        "{} of {} commands did not fail properly on a full disk:\n\n{}",
-        failures.len(),
-        cases.len(),
-        failures.join("\n\n")
+    assert_all_fail(
+        &cases,
+        |args| with_stdout_null(dir.path(), args),
+        "a full disk",
     );
 }
 
