@@ -244,7 +244,7 @@ fn a_full_standard_output_is_an_error() {
         ),
     ];
     assert_all_fail(
-        &cases,
+        cases,
         |args| with_stdout_full(dir.path(), args),
         "a full stdout",
     );
@@ -326,7 +326,7 @@ fn a_full_output_file_is_an_error_naming_it() {
         ),
     ];
     assert_all_fail(
-        &cases,
+        cases,
         |args| with_stdout_null(dir.path(), args),
         "a full disk",
     );
