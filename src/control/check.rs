@@ -15,6 +15,7 @@ pub fn check(s: &Scenario) -> Result<(), ScenarioError> {
         return Ok(());
     };
     check_law(s, c)?;
+    check_timing(s, c)?;
     check_thrust(s, c)
 }
 
@@ -63,16 +64,6 @@ fn check_law(s: &Scenario, c: &Control) -> Result<(), ScenarioError> {
         ));
     }
     if let Some(name) = &c.law {
-        if c.hold_down.is_some() || c.attitude_hold.is_some() || c.descent.is_some() {
-            return Err(invalid(
-                "control.law",
-                format!("{name:?}"),
-                "either a law of your own or the built-in laws ([control.hold_down], \
-                 [control.attitude_hold], [control.descent]), not both: your law commands \
-                 in every phase"
-                    .into(),
-            ));
-        }
         if registered(name).is_none() {
             let known: Vec<String> = registered_names()
                 .iter()
@@ -95,6 +86,16 @@ fn check_law(s: &Scenario, c: &Control) -> Result<(), ScenarioError> {
                 },
             ));
         }
+        if c.hold_down.is_some() || c.attitude_hold.is_some() || c.descent.is_some() {
+            return Err(invalid(
+                "control.law",
+                format!("{name:?}"),
+                "either a law of your own or the built-in laws ([control.hold_down], \
+                 [control.attitude_hold], [control.descent]), not both: your law commands \
+                 in every phase"
+                    .into(),
+            ));
+        }
     } else if c.hold_down.is_none() && c.attitude_hold.is_none() && c.descent.is_none() {
         return Err(invalid(
             "control",
@@ -103,6 +104,43 @@ fn check_law(s: &Scenario, c: &Control) -> Result<(), ScenarioError> {
              [control.descent] or law = \"NAME\" (one of your own)"
                 .into(),
         ));
+    }
+    Ok(())
+}
+
+/// Refuses settings that defeat themselves: a thruster whose shortest firing is longer
+/// than a control period (commanded one period at a time, it never fires), and a hold-down
+/// that cannot end before `simulation.t_max_s` (the run would end under thrust).
+fn check_timing(s: &Scenario, c: &Control) -> Result<(), ScenarioError> {
+    let period = 1.0 / c.rate_hz;
+    for (i, t) in s.thrusters.iter().enumerate() {
+        // A relative margin for the rounding of 1 / rate_hz.
+        if t.min_on_time_s > period * (1.0 + 1e-12) {
+            return Err(invalid(
+                &format!("thrusters[{i}].min_on_time_s"),
+                format!("{} s", t.min_on_time_s),
+                format!(
+                    "at most one control period, 1 / control.rate_hz = {period} s: commanded \
+                     one period at a time, a thruster whose shortest firing is longer never \
+                     fires"
+                ),
+            ));
+        }
+    }
+    if let Some(h) = &c.hold_down {
+        let longest = h.duration_s.support().1;
+        let t_max = s.simulation.t_max_s;
+        if longest >= t_max {
+            return Err(invalid(
+                "control.hold_down.duration_s",
+                format!("up to {longest} s"),
+                format!(
+                    "less than simulation.t_max_s = {t_max} s: a hold-down begins at the first \
+                     contact, so one this long is still pushing when the run ends, and the \
+                     outcome is decided under thrust"
+                ),
+            ));
+        }
     }
     Ok(())
 }

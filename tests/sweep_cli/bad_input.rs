@@ -266,6 +266,46 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
             "at most 4.0000 N",
         ],
     ),
+    bad_scenario(
+        "a thruster whose shortest firing is longer than a control period",
+        concat!(
+            "[[thrusters]]\nposition_m = [0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[[thrusters]]\nposition_m = [-0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.25\n",
+            "[control]\nrate_hz = 5.0\n[control.attitude_hold]\n",
+        ),
+        &[
+            "`thrusters[1].min_on_time_s` = 0.25 s",
+            "1 / control.rate_hz = 0.2 s",
+            "never fires",
+        ],
+    ),
+    bad_scenario(
+        "a hold-down that cannot end before t_max",
+        concat!(
+            "[simulation]\nt_max_s = 30.0\n",
+            "[[thrusters]]\nposition_m = [0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, -1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[[thrusters]]\nposition_m = [-0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, -1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[control]\n[control.hold_down]\nthrust_n = 1.0\n",
+            "duration_s = { dist = \"uniform\", min = 10.0, max = 40.0 }\n",
+        ),
+        &[
+            "`control.hold_down.duration_s` = up to 40 s",
+            "less than simulation.t_max_s = 30 s",
+        ],
+    ),
+    bad_scenario(
+        "an unknown law of the user's beside the built-in ones",
+        concat!(
+            "[[thrusters]]\nposition_m = [0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, -1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[control]\nlaw = \"unknown\"\n[control.hold_down]\n",
+        ),
+        &["`control.law` = \"unknown\"", "this program registers none"],
+    ),
     BadInput {
         name: "bad scenario with an explicit output path and format",
         scenario: Some("[lander]\nmass_kg = 0\n"),
