@@ -160,6 +160,11 @@ fn boundary_refuses_bad_input() {
         ),
         bad_args("tolerance 0", &["--tolerance", "0"], &["--tolerance"]),
         bad_args(
+            "tolerance as wide as the slope range",
+            &["--tolerance", "1000"],
+            &["--tolerance 1000: less than the width of the slope range"],
+        ),
+        bad_args(
             "negative tolerance",
             &["--tolerance", "-1"],
             &["--tolerance"],

@@ -67,6 +67,18 @@ pub fn search(
     let dist = slope_distribution(&scenario)?;
     check_memory(settings)?;
     let range = dist.support();
+    // A tolerance as wide as the range would end every sector's search before it began,
+    // "allowable up to the top" whatever the samples say.
+    if settings.tolerance >= range.1 - range.0 {
+        anyhow::bail!(
+            "--tolerance {}: less than the width of the slope range, {} deg \
+             (inputs.slope_deg from {} to {} deg), or every sector stops before it is searched",
+            settings.tolerance,
+            range.1 - range.0,
+            range.0,
+            range.1
+        );
+    }
     // Candidates are independent draws; a row of a round takes a candidate's values.
     let design = scenario.design;
     scenario.design = Design::Independent;
