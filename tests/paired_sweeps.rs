@@ -56,8 +56,43 @@ fn a_sweep_whose_landers_never_touch_says_so() {
         ),
         "{run}"
     );
+    assert!(
+        run.stderr
+            .contains("40 still in flight at the end (bouncing)")
+            && !run.stderr.contains("turned past 90 deg"),
+        "{run}"
+    );
     let f = read_sweep(&dir.join("up.arrow"));
     assert!(f.strings("outcome").iter().all(|o| o == "bouncing"));
+    // Landers spun over in the fall: tipped in flight, for another reason than a release
+    // too high, and told so.
+    dir.write(
+        "spin.toml",
+        "[initial]\nclearance_m = 3.0\n[inputs]\nrate_x_deg_s = 200.0\n\
+         [simulation]\nt_max_s = 20.0\n",
+    );
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--scenario",
+            "spin.toml",
+            "--samples",
+            "40",
+            "--out",
+            "spin.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(
+        run.stderr
+            .contains("40 of the 40 samples run never touched the surface")
+            && run
+                .stderr
+                .contains("40 turned past 90 deg in flight (tipped)")
+            && !run.stderr.contains("release too high"),
+        "{run}"
+    );
     // Landers that all touch: no warning.
     dir.write("s.toml", SHORT);
     let run = touchdown(

@@ -39,6 +39,8 @@ pub struct Executed {
     pub steps: u64,
     /// Samples of this run that never touched the surface.
     pub untouched: u64,
+    /// Of those, the samples that tipped in flight (turned past 90 deg before touching).
+    pub untouched_tipped: u64,
 }
 
 /// Runs `plan` and writes its file. A signal (`run.stop`) ends it with an `Interrupted`
@@ -81,6 +83,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     let start = std::time::Instant::now();
     let mut computed = 0u64;
     let mut untouched = 0u64;
+    let mut untouched_tipped = 0u64;
     let ran = run.pool.install(|| {
         crate::sweep::run_until(
             scenario,
@@ -93,7 +96,9 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
                 for r in &rows {
                     counts[r.summary.outcome as usize] += 1;
                     steps += r.summary.steps;
-                    untouched += u64::from(r.summary.first_contact_s.is_none());
+                    let never = r.summary.first_contact_s.is_none();
+                    untouched += u64::from(never);
+                    untouched_tipped += u64::from(never && r.summary.outcome == Outcome::Tipped);
                 }
                 computed += rows.len() as u64;
                 eta.done(computed);
@@ -116,6 +121,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         counts,
         steps,
         untouched,
+        untouched_tipped,
     })
 }
 
@@ -249,17 +255,36 @@ fn interrupted(
     .into())
 }
 
-/// Warns of samples that never touched the surface.
+/// Warns of samples that never touched the surface, telling apart those still in flight
+/// at t_max (bouncing) and those that tipped in flight, whose causes differ.
 /// `at` names the sweep among several (a study's value), or is empty.
 pub fn warn_untouched(done: &Executed, scenario: &Scenario, at: &str) {
-    if done.untouched > 0 {
-        tell(&format!(
-            "touchdown: warning: {at}{} of the {} samples run never touched the \
-             surface before simulation.t_max_s = {} s (their first_contact_s is empty: they \
-             end bouncing, or tipped if they turned past 90 deg in flight). A release too \
-             high or an upward velocity error for the run's length? See \
-             initial.clearance_m, inputs.release_height_m and inputs.velocity_error_z_m_s\n",
-            done.untouched, done.computed, scenario.simulation.t_max_s
+    if done.untouched == 0 {
+        return;
+    }
+    let tipped = done.untouched_tipped;
+    let flying = done.untouched - tipped;
+    let mut why = Vec::new();
+    if flying > 0 {
+        why.push(format!(
+            "{flying} still in flight at the end (bouncing): a release too high or an upward \
+             velocity error for the run's length? See initial.clearance_m, \
+             inputs.release_height_m and inputs.velocity_error_z_m_s"
         ));
     }
+    if tipped > 0 {
+        why.push(format!(
+            "{tipped} turned past 90 deg in flight (tipped) before reaching it: body rates or \
+             attitude errors too large for the fall? See inputs.rate_x_deg_s, \
+             inputs.rate_y_deg_s, inputs.roll_deg and inputs.pitch_deg"
+        ));
+    }
+    tell(&format!(
+        "touchdown: warning: {at}{} of the {} samples run never touched the surface before \
+         simulation.t_max_s = {} s (their first_contact_s is empty): {}\n",
+        done.untouched,
+        done.computed,
+        scenario.simulation.t_max_s,
+        why.join("; ")
+    ));
 }
