@@ -510,3 +510,47 @@ fn a_signal_ends_any_command_without_an_unfinished_file() {
     }
     assert!(stopped > 0, "no merge was stopped by the signal");
 }
+
+#[test]
+fn a_link_or_fifo_at_the_temporary_name_is_never_written_through() {
+    let dir = TempDir::new("collide-hostile-partial");
+    dir.write("victim.txt", "keep me\n");
+    dir.write("victim2.txt", "keep me too\n");
+    std::os::unix::fs::symlink("victim.txt", dir.join("s.arrow.partial")).unwrap();
+    std::fs::hard_link(dir.join("victim2.txt"), dir.join("h.arrow.partial")).unwrap();
+    let made = Command::new("mkfifo")
+        .arg(dir.join("f.arrow.partial"))
+        .status()
+        .is_ok_and(|s| s.success());
+    let mut outs = vec!["s.arrow", "h.arrow"];
+    if made {
+        outs.push("f.arrow");
+    }
+    for out in &outs {
+        // Under `timeout` where there is one: opening a FIFO for writing waits for a reader.
+        let run = Command::new("timeout")
+            .args([
+                "60",
+                crate::common::BIN,
+                "sweep",
+                "--samples",
+                "50",
+                "--quiet",
+            ])
+            .args(["--out", out])
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert_eq!(run.status.code(), Some(0), "{out}: {run:?}");
+        assert!(dir.join(out).is_file(), "{out}");
+        assert!(!dir.join(&format!("{out}.partial")).exists(), "{out}");
+    }
+    assert_eq!(
+        std::fs::read_to_string(dir.join("victim.txt")).unwrap(),
+        "keep me\n"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("victim2.txt")).unwrap(),
+        "keep me too\n"
+    );
+}

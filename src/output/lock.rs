@@ -6,7 +6,7 @@
 
 use anyhow::anyhow;
 use std::fs::{File, OpenOptions};
-use std::os::unix::fs::MetadataExt;
+use std::os::unix::fs::{MetadataExt, OpenOptionsExt};
 use std::path::Path;
 
 /// Opens `partial` (the temporary file of the output `out`) for writing, empty, and locked
@@ -18,12 +18,34 @@ pub(super) fn create_locked(partial: &Path, out: &Path) -> anyhow::Result<File> 
     // removes it: the file locked here may no longer be the one named `partial` by the time
     // the lock is granted. Then the name belongs to a newer file: take that one.
     for _ in 0..100 {
-        let file = OpenOptions::new()
+        // Never through a symbolic link put at the temporary name (it would truncate the
+        // file it names): the link itself is removed, as an unfinished file would be.
+        let opened = OpenOptions::new()
             .write(true)
             .create(true)
             .truncate(false)
-            .open(partial)
-            .map_err(cannot)?;
+            .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK)
+            .open(partial);
+        let file = match opened {
+            Ok(file) => file,
+            Err(e) if e.raw_os_error() == Some(libc::ELOOP) => {
+                std::fs::remove_file(partial).map_err(cannot)?;
+                continue;
+            }
+            // A FIFO put there (without a reader: opening it would otherwise wait).
+            Err(e) if e.raw_os_error() == Some(libc::ENXIO) => {
+                std::fs::remove_file(partial).map_err(cannot)?;
+                continue;
+            }
+            Err(e) => return Err(cannot(e)),
+        };
+        // Not a regular file of one name (a hard link put at the temporary name): not ours
+        // to empty; the name is removed and a file of our own made.
+        let opened = file.metadata().map_err(cannot)?;
+        if !opened.is_file() || opened.nlink() > 1 {
+            std::fs::remove_file(partial).map_err(cannot)?;
+            continue;
+        }
         match file.try_lock() {
             Ok(()) => {}
             Err(std::fs::TryLockError::WouldBlock) => {
@@ -37,7 +59,7 @@ pub(super) fn create_locked(partial: &Path, out: &Path) -> anyhow::Result<File> 
             }
         }
         let locked = file.metadata().map_err(cannot)?;
-        match std::fs::metadata(partial) {
+        match std::fs::symlink_metadata(partial) {
             Ok(named) if named.dev() == locked.dev() && named.ino() == locked.ino() => {
                 file.set_len(0).map_err(cannot)?;
                 return Ok(file);
