@@ -244,14 +244,15 @@ fn unfinished(partial: &Path, add: bool) {
 }
 
 /// Removes the temporary files of every output being written (a signal ends the process):
-/// nothing unfinished is left behind.
-pub fn remove_unfinished() {
+/// nothing unfinished is left behind. Returns how many there were.
+pub fn remove_unfinished() -> usize {
     let files = UNFINISHED
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
     for f in files.iter() {
         let _ = std::fs::remove_file(f);
     }
+    files.len()
 }
 
 /// Where output `path` goes: standard output, a device or FIFO (followed through symbolic

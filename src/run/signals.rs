@@ -53,10 +53,15 @@ fn watch() -> anyhow::Result<Arc<AtomicUsize>> {
             for signal in signals.forever() {
                 let now = std::time::Instant::now();
                 if !STOPS_CLEANLY.load(Ordering::SeqCst) {
-                    crate::output::remove_unfinished();
+                    let removed = crate::output::remove_unfinished();
                     tell(&format!(
-                        "touchdown: interrupted by {}: its unfinished output removed\n",
-                        signal_name(signal as usize)
+                        "touchdown: interrupted by {}{}\n",
+                        signal_name(signal as usize),
+                        if removed > 0 {
+                            ": its unfinished output removed"
+                        } else {
+                            ""
+                        }
                     ));
                     std::process::exit(128 + signal);
                 }
