@@ -298,7 +298,7 @@ pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Resu
         ))));
     let schema = Arc::new(Schema::new(c.fields).with_metadata(table_metadata(about)));
     let batch = RecordBatch::try_new(schema.clone(), c.columns)?;
-    let failed = |e| crate::output::trace::cannot_write(path, e);
+    let failed = |e| crate::output::cannot_write(path, e);
     let (file, out) = crate::output::AtomicFile::create(path)?;
     let mut w = crate::output::IpcWriter::new(&file, out, &schema).map_err(failed)?;
     w.write(&batch).map_err(|e| failed(e.into()))?;

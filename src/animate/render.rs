@@ -8,7 +8,7 @@ use super::timing::{
     MAX_FRAMES, Options, check, default_speed, frame_count, frame_delay_cs, frame_times,
 };
 use crate::output::AtomicFile;
-use crate::output::trace::cannot_write;
+use crate::output::cannot_write;
 use crate::plot::canvas::register_font;
 use crate::run::Interrupted;
 use crate::scene::Scene;

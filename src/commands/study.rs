@@ -124,6 +124,6 @@ fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
     let (file, mut out) = crate::output::AtomicFile::create(path)?;
     out.write_all(text.as_bytes())
         .and_then(|()| out.flush())
-        .map_err(|e| crate::output::trace::cannot_write(path, e))?;
+        .map_err(|e| crate::output::cannot_write(path, e))?;
     file.commit(out)
 }

@@ -192,13 +192,8 @@ impl AtomicFile {
     }
 
     fn finish(mut self, mut writer: Out, rename_to: Option<&Path>) -> anyhow::Result<()> {
-        let shown = match self.target {
-            Target::Stdout => "standard output".to_string(),
-            _ => format!("output file {}", self.partial_path().display()),
-        };
-        // The system's error stays the source (a closed pipe is told apart by its kind).
-        let context =
-            |e: std::io::Error| anyhow::Error::new(e).context(format!("cannot write {shown}"));
+        let partial = self.partial_path().to_path_buf();
+        let context = |e: std::io::Error| cannot_write(&partial, e);
         writer.flush().map_err(context)?;
         let sink = writer.into_inner().map_err(|e| context(e.into_error()))?;
         if let (Sink::File(file), Some(path), Target::Regular { partial, .. }) =
@@ -253,6 +248,27 @@ pub fn remove_unfinished() -> usize {
         let _ = std::fs::remove_file(f);
     }
     files.len()
+}
+
+/// The error of a failed write to the output `path` (`-`: standard output), such as a full
+/// disk: the output named once and the reason once (Arrow's and Parquet's errors wrap the
+/// system's and repeat it). An I/O error's kind stays in the error's source, so that a
+/// closed pipe is still told apart (the commands end quietly on one). The sweep's writer and
+/// the study's table report their write errors with it too.
+#[must_use]
+pub fn cannot_write(path: &Path, e: impl Into<anyhow::Error>) -> anyhow::Error {
+    let context = if path.as_os_str() == "-" {
+        "cannot write to standard output".to_string()
+    } else {
+        format!("cannot write output file {}", path.display())
+    };
+    let e = e.into();
+    let io = e.chain().find_map(|c| c.downcast_ref::<std::io::Error>());
+    match io {
+        Some(io) => anyhow::Error::new(std::io::Error::new(io.kind(), io.to_string())),
+        None => e,
+    }
+    .context(context)
 }
 
 /// Where output `path` goes: standard output, a device or FIFO (followed through symbolic

@@ -5,7 +5,7 @@
 //! every thruster's thrust and commanded on-time, the thrust on the lander, the loop's
 //! phase, and what its sensors read beside the true state.
 
-use super::{AtomicFile, ENGINE, IpcWriter, field};
+use super::{AtomicFile, ENGINE, IpcWriter, cannot_write, field};
 use crate::control::ControlModel;
 use crate::reference::{Model, StepReport, Summary};
 use crate::scenario::Sample;
@@ -469,27 +469,6 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
     out.flush().map_err(|e| cannot_write(path, e))?;
     file.commit(out)?;
     Ok(rows)
-}
-
-/// The error of a failed write to the output `path` (`-`: standard output), such as a full
-/// disk: the output named once and the reason once (Arrow's and Parquet's errors wrap the
-/// system's and repeat it). An I/O error's kind stays in the error's source, so that a
-/// closed pipe is still told apart (the commands end quietly on one). The sweep's writer and
-/// the study's table report their write errors with it too.
-#[must_use]
-pub fn cannot_write(path: &Path, e: impl Into<anyhow::Error>) -> anyhow::Error {
-    let context = if path.as_os_str() == "-" {
-        "cannot write to standard output".to_string()
-    } else {
-        format!("cannot write output file {}", path.display())
-    };
-    let e = e.into();
-    let io = e.chain().find_map(|c| c.downcast_ref::<std::io::Error>());
-    match io {
-        Some(io) => anyhow::Error::new(std::io::Error::new(io.kind(), io.to_string())),
-        None => e,
-    }
-    .context(context)
 }
 
 /// The trace's provenance: engine, kind, scenario, seeds, the sample (index, outcome,

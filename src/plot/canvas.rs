@@ -2,7 +2,7 @@
 //! not at all, the panel of lines and its legend.
 
 use crate::output::AtomicFile;
-use crate::output::trace::cannot_write;
+use crate::output::cannot_write;
 use anyhow::{anyhow, bail};
 use plotters::coord::Shift;
 use plotters::prelude::*;

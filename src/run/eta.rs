@@ -85,10 +85,16 @@ impl Eta {
     }
 }
 
-/// A duration of more than a day, for people: days, weeks or years.
-fn duration(s: f64) -> String {
+/// A duration for people: seconds, minutes, hours, days, weeks or years.
+pub(super) fn duration(s: f64) -> String {
     let days = s / DAY_S;
-    if days < 14.0 {
+    if s < 120.0 {
+        format!("{s:.0} s")
+    } else if s < 7200.0 {
+        format!("{:.0} min", s / 60.0)
+    } else if days < 1.0 {
+        format!("{:.1} h", s / 3600.0)
+    } else if days < 14.0 {
         format!("{days:.1} days")
     } else if days < 2.0 * 365.25 {
         format!("{:.0} weeks", days / 7.0)
@@ -103,6 +109,9 @@ mod tests {
 
     #[test]
     fn durations_read_in_days_weeks_or_years() {
+        assert_eq!(duration(40.0), "40 s");
+        assert_eq!(duration(600.0), "10 min");
+        assert_eq!(duration(3.5 * 3600.0), "3.5 h");
         assert_eq!(duration(1.5 * 86_400.0), "1.5 days");
         assert_eq!(duration(364.0 * 86_400.0), "52 weeks");
         assert_eq!(duration(3.0 * 365.25 * 86_400.0), "3 years");

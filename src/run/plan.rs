@@ -227,7 +227,7 @@ fn refuse_older_than_finished(
          keep {}, remove {}; to resume, move {} away first",
         out.display(),
         out.display(),
-        duration_words(later.as_secs_f64()),
+        super::eta::duration(later.as_secs_f64()),
         from.path.display(),
         from.seed,
         from.samples,
@@ -236,14 +236,4 @@ fn refuse_older_than_finished(
         from.path.display(),
         out.display()
     )
-}
-
-/// A duration as words: `40 s`, `12 min`, `3.5 h`, `2.0 days`.
-fn duration_words(s: f64) -> String {
-    match s {
-        s if s < 120.0 => format!("{s:.0} s"),
-        s if s < 7200.0 => format!("{:.0} min", s / 60.0),
-        s if s < 172_800.0 => format!("{:.1} h", s / 3600.0),
-        s => format!("{:.1} days", s / 86_400.0),
-    }
 }

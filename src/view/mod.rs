@@ -42,7 +42,7 @@ pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
     let (file, mut sink) = AtomicFile::create(out)?;
     sink.write_all(page.as_bytes())
         .and_then(|()| sink.flush())
-        .map_err(|e| crate::output::trace::cannot_write(out, e))?;
+        .map_err(|e| crate::output::cannot_write(out, e))?;
     file.commit(sink)?;
     Ok(Written {
         times,

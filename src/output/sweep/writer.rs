@@ -148,7 +148,7 @@ impl SweepWriter {
 
     /// An error writing the file, naming it.
     fn write_error(&self, e: anyhow::Error) -> anyhow::Error {
-        crate::output::trace::cannot_write(self.file.partial_path(), e)
+        crate::output::cannot_write(self.file.partial_path(), e)
     }
 
     /// Writes the last rows and closes the file, renamed onto `name` instead of its final
@@ -159,7 +159,7 @@ impl SweepWriter {
             Writer::Arrow(w) => w.finish().map_err(anyhow::Error::from),
             Writer::Parquet(w) => w.into_inner().map_err(anyhow::Error::from),
         };
-        let failed = |e| crate::output::trace::cannot_write(self.file.partial_path(), e);
+        let failed = |e| crate::output::cannot_write(self.file.partial_path(), e);
         let mut out = out.map_err(failed)?;
         std::io::Write::flush(&mut out).map_err(|e| failed(e.into()))?;
         let made = match name {
