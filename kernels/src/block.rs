@@ -104,6 +104,9 @@ pub struct ThrustLanes<L: Lane> {
     /// Mask: the control loop may still fire; the rest clock and the early rules wait
     /// (MODEL.md section 8).
     pub powered: L::Mask,
+    /// Mask: a footpad touched the surface in some step since the lane's last control
+    /// event (the touchdown switches; `take_touched` reads and clears it).
+    pub touched: L::Mask,
 }
 
 /// `LANES` landers.
@@ -261,6 +264,7 @@ impl<L: Lane> Block<L> {
                 event_in_s: lane(f64::INFINITY),
                 approach_m_s: zero,
                 powered: all_false::<L>(),
+                touched: all_false::<L>(),
             },
         }
     }
@@ -314,6 +318,14 @@ impl<L: Lane> Block<L> {
         t.event_in_s.set_lane(i, thrust.event_in_s);
         t.approach_m_s.set_lane(i, thrust.approach_m_s);
         t.powered.set_lane(i, thrust.powered);
+    }
+
+    /// Whether a footpad of lane `i` touched the surface in some step since this was last
+    /// asked (outside the kernels: its control loop's touchdown switches); clears it.
+    pub fn take_touched(&mut self, i: usize) -> bool {
+        let touched = self.thrust.touched.lane(i);
+        self.thrust.touched.set_lane(i, false);
+        touched
     }
 
     /// Number of lanes holding a sample (read through memory, outside the kernels).

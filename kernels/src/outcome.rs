@@ -133,6 +133,9 @@ pub fn observe<L: Lane, const DAMPERS: bool, const THRUST: bool>(
     }
     t.max_penetration = max_into(t.max_penetration, deepest);
     let touching = contacts.simd_gt(zero);
+    if THRUST {
+        block.thrust.touched |= touching;
+    }
     t.first_contact_s =
         (touching & t.first_contact_s.is_nan()).select(block.start_t_s, t.first_contact_s);
     let lifted = !touching & t.touched & (-deepest).simd_gt(p.bounce_clearance_m);

@@ -2,7 +2,7 @@
 //! law parameters, the latency queue of its commands, the phase it is in, and the thrust it
 //! gets until its next event. The kernels' lanes and the scalar reference both run it.
 
-use super::allocation::{Wrench, quantise};
+use super::allocation::{Wrench, quantise_carrying};
 use super::laws::{DescentDraw, LAW_MEMORY, LawCommand, attitude_torque, descent_force};
 use super::model::{ControlModel, draw};
 use super::sensors::{Sensed, Truth};
@@ -100,6 +100,9 @@ pub struct LaneControl {
     period_left_s: f64,
     /// Time each thruster still fires in it, s.
     on_left_s: [f64; MAX_THRUSTERS],
+    /// What each thruster's commands asked of it and quantisation left unfired (negative:
+    /// fired beyond), carried into its next command, s.
+    carry_s: [f64; MAX_THRUSTERS],
     /// The length of the segment under way (from the last event to the next), s.
     segment_s: f64,
     /// Thrust magnitude summed over the thrusters firing in it, N.
@@ -110,6 +113,8 @@ pub struct LaneControl {
     impulse_n_s: f64,
     /// What the sensors read at the last control instant.
     last_sensed: Option<Sensed>,
+    /// A touchdown switch closed since the last control instant (latched until read).
+    switch_closed: bool,
     /// The sample's release height, m: where the descent law releases the lander.
     release_height_m: f64,
     /// Whether the event under way is a control instant (`begin` to `end`).
@@ -234,12 +239,14 @@ impl LaneControl {
             current: IDLE,
             period_left_s: 0.0,
             on_left_s: [0.0; MAX_THRUSTERS],
+            carry_s: [0.0; MAX_THRUSTERS],
             segment_s: 0.0,
             flow_n: 0.0,
             firing: 0,
             powered: true,
             impulse_n_s: 0.0,
             last_sensed: None,
+            switch_closed: false,
             release_height_m: sample.inputs.release_height_m,
             instant_due: false,
             instants: 0,
@@ -314,6 +321,7 @@ impl LaneControl {
         if !self.powered {
             return None;
         }
+        self.switch_closed |= truth.contact;
         let elapsed = self.segment_s;
         self.spend(elapsed);
         self.period_left_s -= elapsed;
@@ -329,6 +337,7 @@ impl LaneControl {
         }
         self.instant_due = true;
         let sensed = self.sense(m, truth);
+        self.switch_closed = false;
         self.last_sensed = Some(sensed);
         (m.law.is_some() && self.phase == Phase::User).then_some(sensed)
     }
@@ -486,9 +495,17 @@ impl LaneControl {
         let n = m.thrusters.len();
         if wrench != Wrench::default() {
             m.allocation.duties(&wrench, &mut command.on_s[..n]);
-            for (on, t) in command.on_s[..n].iter_mut().zip(&m.thrusters) {
-                *on = quantise(*on * m.period_s, t.min_on_time_s, m.period_s);
-            }
+        }
+        // Each thruster carries what quantisation left over to its next command, so that
+        // over the periods it fires what was asked (a couple's two thrusters, asked alike,
+        // fire alike: no net force).
+        for ((on, carry), t) in command.on_s[..n]
+            .iter_mut()
+            .zip(&mut self.carry_s[..n])
+            .zip(&m.thrusters)
+        {
+            (*on, *carry) =
+                quantise_carrying(*on * m.period_s, *carry, t.min_on_time_s, m.period_s);
         }
         self.queue.push(command);
         self.current = if self.queue.len() > c.latency_periods as usize {
@@ -523,7 +540,8 @@ impl LaneControl {
             rate_rad_s: rate,
             velocity_m_s: velocity,
             altitude_m: altitude,
-            contact: truth.contact,
+            contact: self.switch_closed,
+            touching: truth.touching,
         }
     }
 

@@ -20,7 +20,7 @@ mod model;
 mod sensors;
 mod thrust;
 
-pub use allocation::{Allocation, Wrench, quantise};
+pub use allocation::{Allocation, Wrench, quantise, quantise_carrying};
 pub use check::check;
 pub use lane::{ControlReport, ControlSummary, LaneControl, Phase};
 pub use laws::{

@@ -16,8 +16,11 @@ pub struct Truth {
     pub attitude: DQuat,
     /// Body rates in B, rad/s.
     pub rate_rad_s: DVec3,
-    /// Whether a footpad touched the surface in the last step (the touchdown switches).
+    /// Whether a footpad touched the surface in some step since the loop's last event (the
+    /// touchdown switches close on it; the loop latches them).
     pub contact: bool,
+    /// Whether a footpad touches the surface in the last step.
+    pub touching: bool,
     /// The surface normal.
     pub normal: DVec3,
 }
@@ -36,6 +39,10 @@ pub struct Sensed {
     pub velocity_m_s: DVec3,
     /// CG height above the surface plane along its normal, m.
     pub altitude_m: f64,
-    /// A touchdown switch closed.
+    /// A touchdown switch closed since the last control instant: a switch latches at the
+    /// first step its footpad touches and stays closed until the loop has read it, so a
+    /// contact shorter than a period is not missed.
     pub contact: bool,
+    /// A footpad touches the surface now (in the last step): the switches' latest state.
+    pub touching: bool,
 }

@@ -108,11 +108,15 @@ pub fn run_to_end(
         .as_ref()
         .map(|m| (m, LaneControl::new(m, sample)));
     if let Some((m, c)) = &mut control {
-        state.thrust = c.event(m, &truth_of(&state, &surface, false));
+        state.thrust = c.event(m, &truth_of(&state, &surface, false, false));
     }
+    // A footpad touched in some step since the last control event (the touchdown switches).
+    let mut touched = false;
     loop {
         let dt = step_size(model, &surface, &state);
         step(model, &surface, &mut state, dt, &mut report);
+        let touching = report.legs.iter().any(super::step::LegReport::in_contact);
+        touched |= touching;
         if let Some((m, c)) = &control {
             c.report(m, report.control.get_or_insert_with(Default::default));
         }
@@ -135,16 +139,16 @@ pub fn run_to_end(
         if let Some((m, c)) = &mut control
             && state.thrust.event_in_s <= 0.0
         {
-            let contact = report.legs.iter().any(super::step::LegReport::in_contact);
-            state.thrust = c.event(m, &truth_of(&state, &surface, contact));
+            state.thrust = c.event(m, &truth_of(&state, &surface, touched, touching));
+            touched = false;
         }
     }
 }
 
 /// The truth a lander's control loop reads from the reference's state (`contact`: a
-/// footpad touched in the last step).
+/// footpad touched in some step since the loop's last event; `touching`: in the last).
 #[must_use]
-pub fn truth_of(state: &State, surface: &Surface, contact: bool) -> Truth {
+pub fn truth_of(state: &State, surface: &Surface, contact: bool, touching: bool) -> Truth {
     Truth {
         t_s: state.t_s,
         position_m: state.body.position_m,
@@ -152,6 +156,7 @@ pub fn truth_of(state: &State, surface: &Surface, contact: bool) -> Truth {
         attitude: state.body.attitude,
         rate_rad_s: state.body.rate_rad_s,
         contact,
+        touching,
         normal: surface.normal,
     }
 }

@@ -141,7 +141,12 @@ pub(super) fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
 
 /// The truth lane `i`'s control loop reads (`contact`: a footpad of the lane touched in
 /// the last step).
-pub(super) fn lane_truth<L: Lane>(block: &Block<L>, i: usize, contact: bool) -> Truth {
+pub(super) fn lane_truth<L: Lane>(
+    block: &Block<L>,
+    i: usize,
+    contact: bool,
+    touching: bool,
+) -> Truth {
     Truth {
         t_s: block.t_s.lane(i),
         position_m: DVec3::from_array(block.position_m.lane(i)),
@@ -149,6 +154,7 @@ pub(super) fn lane_truth<L: Lane>(block: &Block<L>, i: usize, contact: bool) -> 
         attitude: DQuat::from_array(block.attitude.lane(i)),
         rate_rad_s: DVec3::from_array(block.rate_rad_s.lane(i)),
         contact,
+        touching,
         normal: DVec3::from_array(block.surface.normal.lane(i)),
     }
 }

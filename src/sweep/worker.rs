@@ -93,7 +93,8 @@ impl<K: Kernel> Worker<K> {
             self.samples[i] = Some(s);
             if let Some(m) = &model.control {
                 let mut c = LaneControl::new(m, &s);
-                let truth = lane_truth(&self.block, i, false);
+                self.block.take_touched(i);
+                let truth = lane_truth(&self.block, i, false, false);
                 self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
                 self.control[i] = Some(c);
             }
@@ -112,12 +113,13 @@ impl<K: Kernel> Worker<K> {
         let mut sensed = [None; MAX_LANES];
         let mut count = 0;
         for i in (0..K::LANES).filter(|i| events & (1 << i) != 0) {
-            let contact = self
+            let touching = self
                 .block
                 .leg_step
                 .iter()
                 .any(|l| l.penetration_m.lane(i) > 0.0);
-            let truth = lane_truth(&self.block, i, contact);
+            let contact = self.block.take_touched(i);
+            let truth = lane_truth(&self.block, i, contact, touching);
             let c = self.control[i]
                 .as_mut()
                 .expect("a lane with events has a loop");

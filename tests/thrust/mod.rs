@@ -20,6 +20,7 @@ mod descent;
 mod free_flight;
 mod hold_down;
 mod propellant;
+mod switches;
 mod tipping;
 
 // ---------------------------------------------------------------------------------------
