@@ -84,8 +84,9 @@ impl Allocation {
 
     /// The duty of every thruster for `wrench` (into `duty`): the torque first, scaled
     /// down as a whole where it alone would need a thruster for longer than the period,
-    /// then as much of the force as the thrusters have left, scaled as a whole. Axes the
-    /// cluster cannot give pure get nothing.
+    /// then as much of the force along `Z_B` (the main axis: gravity, braking, hold-down)
+    /// as the thrusters have left, then as much of the force across it, each scaled as a
+    /// whole. Axes the cluster cannot give pure get nothing.
     pub fn duties(&self, wrench: &Wrench, duty: &mut [f64]) {
         let w = wrench.axes();
         let share = |axes: std::ops::Range<usize>, out: &mut [f64]| {
@@ -101,21 +102,28 @@ impl Allocation {
         };
         let n = duty.len();
         let mut torque = [0.0; MAX_THRUSTERS];
-        let mut force = [0.0; MAX_THRUSTERS];
+        let mut along = [0.0; MAX_THRUSTERS];
+        let mut across = [0.0; MAX_THRUSTERS];
         share(3..6, &mut torque[..n]);
-        share(0..3, &mut force[..n]);
+        share(2..3, &mut along[..n]);
+        share(0..2, &mut across[..n]);
         let most = torque[..n].iter().copied().fold(0.0, f64::max);
         if most > 1.0 {
             torque[..n].iter_mut().for_each(|t| *t /= most);
         }
-        let mut scale: f64 = 1.0;
-        for (t, f) in torque[..n].iter().zip(&force[..n]) {
-            if *f > 0.0 {
-                scale = scale.min((1.0 - t).max(0.0) / f);
+        duty.copy_from_slice(&torque[..n]);
+        for force in [&along[..n], &across[..n]] {
+            let mut scale: f64 = 1.0;
+            for (d, f) in duty.iter().zip(force) {
+                if *f > 0.0 {
+                    scale = scale.min((1.0 - d).max(0.0) / f);
+                }
             }
-        }
-        for ((d, t), f) in duty.iter_mut().zip(&torque[..n]).zip(&force[..n]) {
-            *d = t + scale * f;
+            if force.iter().any(|&f| f > 0.0) {
+                for (d, f) in duty.iter_mut().zip(force) {
+                    *d += scale * f;
+                }
+            }
         }
     }
 }

@@ -169,6 +169,16 @@ fn check_thrust(s: &Scenario, c: &Control) -> Result<(), ScenarioError> {
             ));
         }
     }
+    if c.descent.is_some_and(|d| d.null_lateral_velocity) && !(0..4).all(|k| allocation.can(k)) {
+        return Err(invalid(
+            "control.descent.null_lateral_velocity",
+            "true".into(),
+            "thrusters that push pure both ways along X_B and Y_B (for example, four \
+             pushing along +-X_B and +-Y_B through the CG) to null the velocity along the \
+             surface, or false"
+                .into(),
+        ));
+    }
     if let Some(h) = &c.hold_down {
         let most = h.thrust_n.support().1;
         if most > 0.0 {

@@ -111,9 +111,10 @@ pub struct DescentDraw {
 /// `gain (h'_ref - h') n + g up`, where `h' = n . v` is the rate of the footpads' height
 /// `height_m` along the surface normal `n` (`v` the sensed velocity) and `h'_ref` the
 /// braking profile's, `-sqrt(2 braking (height - release))` above the release height
-/// `release_height_m` and 0 at or below it; the sensed attitude turns it into B. Only the
-/// approach along the normal is controlled: a velocity along the surface (the navigation
-/// error) changes no height and is left as it is.
+/// `release_height_m` and 0 at or below it; the sensed attitude turns it into B. A velocity
+/// along the surface (the navigation error) changes no height: with `null_lateral` the
+/// law nulls it at the same rate, asking for `gain (h'_ref n - v) + g up`; without, it is
+/// left as it is.
 #[must_use]
 pub fn descent_force(
     d: &DescentDraw,
@@ -123,11 +124,17 @@ pub fn descent_force(
     release_height_m: f64,
     sensed: &Sensed,
     normal: DVec3,
+    null_lateral: bool,
 ) -> DVec3 {
     let above = (height_m - release_height_m).max(0.0);
     let rate_ref = -(2.0 * d.braking_m_s2 * above).sqrt();
-    let rate = normal.dot(sensed.velocity_m_s);
-    let accel = normal * ((rate_ref - rate) * d.gain_per_s) + DVec3::Z * gravity_m_s2;
+    let v = sensed.velocity_m_s;
+    let control = if null_lateral {
+        (normal * rate_ref - v) * d.gain_per_s
+    } else {
+        normal * ((rate_ref - normal.dot(v)) * d.gain_per_s)
+    };
+    let accel = control + DVec3::Z * gravity_m_s2;
     sensed.attitude.inverse() * (accel * mass_kg)
 }
 

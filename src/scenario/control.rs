@@ -108,7 +108,9 @@ table! {
     /// `h_r` with `|h'|` below `release_speed_m_s` it releases the lander (the burn stops at
     /// once: its commands still waiting out the latency are dropped): the fall that
     /// follows, and the residual velocity, come from the law and its sensors. Velocity
-    /// along the surface changes no height and is left as it is (the navigation error).
+    /// along the surface changes no height and is left as it is (the navigation error),
+    /// unless `null_lateral_velocity`: then the law asks for `gain_per_s (h'_ref n - v) + g`,
+    /// nulling it at the same rate (thrusters that push pure along +-X_B and +-Y_B needed).
     /// Each parameter may be drawn per sample (`control::DescentDraw`).
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct Descent;
@@ -124,6 +126,8 @@ table! {
         /// Descent speed along `-Z_I` at the start (plus the velocity errors), m/s.
         start_speed_m_s: Dist =
             read_dist_at_least(r.or(key, 0.3), key, 0.0, "speeds of at least 0 m/s")?,
+        /// Null the velocity along the surface too (lateral thrusters needed).
+        null_lateral_velocity: bool = r.or(key, false).bool(key)?,
     }
 }
 

@@ -267,6 +267,21 @@ const BAD_SWEEP_INPUTS: &[BadInput] = &[
         ],
     ),
     bad_scenario(
+        "a descent nulling the lateral velocity without lateral thrusters",
+        concat!(
+            "[initial]\nstart = \"descent\"\n",
+            "[[thrusters]]\nposition_m = [0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[[thrusters]]\nposition_m = [-0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",
+            "max_thrust_n = 2.0\nmin_on_time_s = 0.01\n",
+            "[control]\n[control.descent]\nnull_lateral_velocity = true\n",
+        ),
+        &[
+            "`control.descent.null_lateral_velocity` = true",
+            "push pure both ways along X_B and Y_B",
+        ],
+    ),
+    bad_scenario(
         "a thruster whose shortest firing is longer than a control period",
         concat!(
             "[[thrusters]]\nposition_m = [0.4, 0.0, 0.3]\ndirection = [0.0, 0.0, 1.0]\n",

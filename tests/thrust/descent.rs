@@ -115,6 +115,65 @@ fn thrust_descent_releases_into_a_ballistic_fall() {
     table.finish();
 }
 
+/// `perfect_descent(latency)` with four 1 N thrusters pushing along +-X_B and +-Y_B
+/// through the CG (0.45 m out at the CG's height) and, if `null`, the law nulling the
+/// velocity along the surface (`null_lateral_velocity`).
+fn lateral_descent(latency: u32, null: bool) -> Scenario {
+    let mut s = perfect_descent(latency);
+    for (x, y) in [(0.45, 0.0), (-0.45, 0.0), (0.0, 0.45), (0.0, -0.45)] {
+        let mut t = s.thrusters[0].clone();
+        t.position_m = [x, y, 0.0];
+        t.direction = [-x / 0.45, -y / 0.45, 0.0];
+        t.max_thrust_n = 1.0;
+        s.thrusters.push(t);
+    }
+    let c = s.control.as_mut().and_then(|c| c.descent.as_mut()).unwrap();
+    c.null_lateral_velocity = null;
+    s
+}
+
+#[test]
+fn thrust_descent_nulls_the_lateral_velocity_with_lateral_thrusters() {
+    // The perfect loop on level ground with a navigation error of (0.10, -0.06) m/s along
+    // the surface, latencies 0 and 2. The four lateral thrusters give at most 1 N / 100 kg
+    // = 0.01 m/s^2 each way: the law (gain 2/s) asks for more until the speed is below
+    // 0.005 m/s, so it brakes at about 0.01 m/s^2 for some 10-12 s and then decays as
+    // exp(-2 t), well inside the descent (over 16 s from 15 m). One minimum on-time of a
+    // lateral thruster changes the velocity by 1 N x 10 ms / 100 kg = 1e-4 m/s, and each
+    // carries its rounding to the next period (at most half of that left), so at release
+    // the speed along the surface is at most a few such quanta: 1e-3 m/s (the 0.117 m/s
+    // of the error would be left without the law). Without `null_lateral_velocity` the
+    // law asks for no force along the surface: the error is left to rounding (1e-9 m/s),
+    // and the approach rate is below the release speed either way.
+    let mut table = Table::new("thrust: descent nulls the velocity along the surface");
+    let (ex, ey) = (0.10, -0.06);
+    for latency in [0, 2] {
+        for null in [true, false] {
+            let s = lateral_descent(latency, null);
+            let model = Model::new(&s);
+            let sample = sample_of(Inputs {
+                release_height_m: 7.5,
+                velocity_error_x_m_s: ex,
+                velocity_error_y_m_s: ey,
+                ..quiet()
+            });
+            let summary = run(&model, &sample, |_: &StepReport| {});
+            let c = *summary.control.expect("a control summary");
+            let case = format!("latency {latency}, null_lateral_velocity {null}");
+            table.equal(&case, "released", c.release_time_s.is_finite(), true);
+            let [vx, vy, vz] = c.release_velocity_m_s;
+            table.at_most(&case, "|approach rate| at release (m/s)", vz.abs(), 0.01);
+            if null {
+                table.at_most(&case, "speed along the surface (m/s)", vx.hypot(vy), 1e-3);
+            } else {
+                table.close(&case, "vx at release (m/s)", vx, ex, 1e-9);
+                table.close(&case, "vy at release (m/s)", vy, ey, 1e-9);
+            }
+        }
+    }
+    table.finish();
+}
+
 #[test]
 fn thrust_descent_parameters_are_drawn_per_sample() {
     // The descent's parameters are inputs like any other: a start altitude uniform in
