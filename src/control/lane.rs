@@ -558,7 +558,6 @@ impl LaneControl {
                 self.release_height_m,
                 sensed,
                 normal,
-                m.config.descent.is_some_and(|d| d.null_lateral_velocity),
             ),
             ..self.attitude_hold(m, sensed, normal)
         }

@@ -105,6 +105,9 @@ pub struct DescentDraw {
     /// The burn stops at the first instant at or below the release height with the
     /// sensed `|h'|` under this.
     pub release_speed_m_s: f64,
+    /// The law nulls the velocity along the surface too (the scenario's
+    /// `null_lateral_velocity`, the same for every sample).
+    pub null_lateral_velocity: bool,
 }
 
 /// The descent law's force on the lander (`[control.descent]`), in B: its mass times
@@ -112,7 +115,7 @@ pub struct DescentDraw {
 /// `height_m` along the surface normal `n` (`v` the sensed velocity) and `h'_ref` the
 /// braking profile's, `-sqrt(2 braking (height - release))` above the release height
 /// `release_height_m` and 0 at or below it; the sensed attitude turns it into B. A velocity
-/// along the surface (the navigation error) changes no height: with `null_lateral` the
+/// along the surface (the navigation error) changes no height: with `null_lateral_velocity` the
 /// law nulls it at the same rate, asking for `gain (h'_ref n - v) + g up`; without, it is
 /// left as it is.
 #[must_use]
@@ -124,12 +127,11 @@ pub fn descent_force(
     release_height_m: f64,
     sensed: &Sensed,
     normal: DVec3,
-    null_lateral: bool,
 ) -> DVec3 {
     let above = (height_m - release_height_m).max(0.0);
     let rate_ref = -(2.0 * d.braking_m_s2 * above).sqrt();
     let v = sensed.velocity_m_s;
-    let control = if null_lateral {
+    let control = if d.null_lateral_velocity {
         (normal * rate_ref - v) * d.gain_per_s
     } else {
         normal * ((rate_ref - normal.dot(v)) * d.gain_per_s)

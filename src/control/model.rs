@@ -105,6 +105,7 @@ impl ControlModel {
                 "descent_release_speed_m_s",
                 g[8],
             ),
+            null_lateral_velocity: d.null_lateral_velocity,
         })
     }
 }
