@@ -113,8 +113,8 @@ mod tests {
     #[test]
     fn the_first_points_are_joe_and_kuos() {
         // The whole table was checked once against SciPy 1.17's unscrambled Sobol
-        // (`qmc.Sobol(19, scramble=False).random_base2(10)`, Gray-code order): the same
-        // set of 1024 points in all 19 dimensions, bit for bit.
+        // (`qmc.Sobol(28, scramble=False).random_base2(10)`, Gray-code order): the same
+        // set of 1024 points in all 28 dimensions, bit for bit.
         // Point 0 is the origin and point 1 is 1/2 in every dimension; point 2 is
         // V_2 = m_2 / 4: m_2 is 1 for van der Corput's dimension, 1 XOR 2 = 3 by the
         // recurrence of the degree-1 polynomial, and the tabled m_2 of the next four.
