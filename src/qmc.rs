@@ -12,10 +12,10 @@
 //! alignments of the raw sequence.
 
 /// Dimensions this module has direction numbers for.
-pub const MAX_DIMENSIONS: usize = 19;
+pub const MAX_DIMENSIONS: usize = 28;
 
 /// Joe and Kuo's primitive polynomials and initial direction numbers for dimensions 2 to
-/// 19: (degree s, coefficients a, m_1 ... m_s).
+/// 28: (degree s, coefficients a, m_1 ... m_s).
 const JOE_KUO: [(u32, u32, &[u32]); MAX_DIMENSIONS - 1] = [
     (1, 0, &[1]),
     (2, 1, &[1, 3]),
@@ -35,6 +35,15 @@ const JOE_KUO: [(u32, u32, &[u32]); MAX_DIMENSIONS - 1] = [
     (6, 19, &[1, 1, 1, 15, 7, 5]),
     (6, 22, &[1, 3, 1, 15, 13, 25]),
     (6, 25, &[1, 1, 5, 5, 19, 61]),
+    (7, 1, &[1, 3, 7, 11, 23, 15, 103]),
+    (7, 4, &[1, 3, 7, 13, 13, 15, 69]),
+    (7, 7, &[1, 1, 3, 13, 7, 35, 63]),
+    (7, 8, &[1, 3, 5, 9, 1, 25, 53]),
+    (7, 14, &[1, 3, 1, 13, 9, 35, 107]),
+    (7, 19, &[1, 3, 1, 5, 27, 61, 31]),
+    (7, 21, &[1, 1, 5, 11, 19, 41, 61]),
+    (7, 28, &[1, 3, 5, 3, 3, 13, 69]),
+    (7, 31, &[1, 1, 7, 13, 1, 19, 1]),
 ];
 
 /// The 32 direction numbers `V_1 ... V_32` of dimension `dim` (0-based), as Joe and Kuo's
@@ -104,8 +113,8 @@ mod tests {
     #[test]
     fn the_first_points_are_joe_and_kuos() {
         // The whole table was checked once against SciPy 1.17's unscrambled Sobol
-        // (`qmc.Sobol(19, scramble=False).random_base2(10)`, Gray-code order): the same
-        // set of 1024 points in all 19 dimensions, bit for bit.
+        // (`qmc.Sobol(28, scramble=False).random_base2(10)`, Gray-code order): the same
+        // set of 1024 points in all 28 dimensions, bit for bit.
         // Point 0 is the origin and point 1 is 1/2 in every dimension; point 2 is
         // V_2 = m_2 / 4: m_2 is 1 for van der Corput's dimension, 1 XOR 2 = 3 by the
         // recurrence of the degree-1 polynomial, and the tabled m_2 of the next four.

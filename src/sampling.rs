@@ -13,15 +13,16 @@
 use crate::dist::quantile;
 use crate::rng::{sample_seed, stream, uniform_open01, uniform01};
 use crate::scenario::{
-    Design, Dist, INPUT_FIELDS, Inputs, PARAMETERS, Sample, Scenario, VALUES, design_inputs,
-    design_position, grid_dists, grid_indices, law_grid_size, value_dists, value_name,
+    Design, Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETERS, Sample, Scenario, VALUES,
+    design_inputs, design_position, grid_indices, stream_name, value_dists,
 };
 use rand_core::RngCore;
 
 /// The inputs of sample `index` of `scenario`.
 ///
 /// With `design = "sobol-indices"` (Saltelli's design), samples come in blocks of `d + 2`
-/// for the `d` inputs drawn at random (`design_inputs`): block `j` is base point `j`, whose
+/// for the `d` values drawn at random (`design_inputs`: inputs, parameters and control-law
+/// parameters): block `j` is base point `j`, whose
 /// rows A and B are the independent draws `2 j` and `2 j + 1`, followed by AB_1 ... AB_d,
 /// each A with one varied input taken from B. The rows AB_q keep A's sample seed, terrain
 /// tile and offset, so whatever else a sample draws (sensor noise, thruster errors) is A's
@@ -72,7 +73,7 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
         .and_then(|r| r.sample_seed)
         .unwrap_or_else(|| sample_seed(scenario.seed, index));
     let dists = value_dists(scenario);
-    let grid = grid_indices(&grid_dists(scenario), index);
+    let grid = grid_indices(&dists, index);
     let mut values = [0.0; VALUES];
     // With the quasi-random design, the q-th value drawn from a distribution takes
     // coordinate q of point `index` of the scrambled Sobol sequence.
@@ -90,7 +91,7 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
                 dimension += 1;
                 quantile(d, u, g)
             }
-            d => quantile(d, uniform_open01(&mut stream(seed, value_name(k))), g),
+            d => quantile(d, uniform_open01(&mut stream(seed, stream_name(k))), g),
         };
     }
     let rough = &scenario.surface.roughness;
@@ -118,7 +119,7 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
         parameters: [0.0; PARAMETERS],
         terrain_tile,
         terrain_offset_m,
-        law_cell: index % law_grid_size(scenario.control.as_ref()),
+        law: [0.0; LAW_PARAMETERS],
     };
     s.set_values(values);
     s
@@ -127,7 +128,7 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::{grid_size, law_grid};
+    use crate::scenario::grid_size;
 
     #[test]
     fn a_sample_is_a_pure_function_of_seed_and_index() {
@@ -233,21 +234,23 @@ mod tests {
                  duration_s = { dist = \"grid\", min = 5.0, max = 20.0, count = 4 }\n";
         let s = Scenario::from_toml(&text).unwrap();
         assert_eq!(grid_size(&s), 3 * 9 * 4);
-        let control = s.control.clone().unwrap();
         let pick = |i| {
             let x = sample(&s, i);
-            let g = law_grid(&control, x.law_cell);
-            (x.inputs.slope_deg, g[0], g[1])
+            (x.inputs.slope_deg, x.law[0], x.law[1])
         };
-        assert_eq!(pick(0), (0.0, 0, 0));
-        assert_eq!(pick(1), (0.0, 0, 1));
-        assert_eq!(pick(4), (0.0, 1, 0));
-        assert_eq!(pick(36), (10.0, 0, 0));
-        assert_eq!(pick(107), (20.0, 8, 3));
-        assert_eq!(pick(108), (0.0, 0, 0));
-        // Every law parameter the scenario has not is at 0; without a control loop
-        // nothing joins the grid.
-        assert!(law_grid(&control, 35)[2..].iter().all(|&g| g == 0));
-        assert_eq!(sample(&Scenario::default(), 5).law_cell, 0);
+        assert_eq!(pick(0), (0.0, 0.0, 5.0));
+        assert_eq!(pick(1), (0.0, 0.0, 10.0));
+        assert_eq!(pick(4), (0.0, 5.0, 5.0));
+        assert_eq!(pick(36), (10.0, 0.0, 5.0));
+        assert_eq!(pick(107), (20.0, 40.0, 20.0));
+        assert_eq!(pick(108), (0.0, 0.0, 5.0));
+        // Every law parameter of a law the scenario has not is 0.
+        assert!(sample(&s, 35).law[2..].iter().all(|&x| x == 0.0));
+        assert!(
+            sample(&Scenario::default(), 5)
+                .law
+                .iter()
+                .all(|&x| x == 0.0)
+        );
     }
 }

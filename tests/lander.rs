@@ -19,7 +19,16 @@ pub(crate) fn sample_of(inputs: Inputs<f64>) -> Sample {
         parameters: touchdown::scenario::Parameter::ALL.map(|p| default.parameter(p)),
         terrain_tile: 0,
         terrain_offset_m: [0.0; 2],
-        law_cell: 0,
+        law: [0.0; touchdown::scenario::LAW_PARAMETERS],
+    }
+}
+
+/// A hand-made sample of `scenario`: `sample_of`, with the control laws' parameters at the
+/// scenario's numbers (0 for a law it has not; no scenario of these tests draws them).
+pub(crate) fn sample_in(scenario: &Scenario, inputs: Inputs<f64>) -> Sample {
+    Sample {
+        law: touchdown::sampling::sample(scenario, 0).law,
+        ..sample_of(inputs)
     }
 }
 

@@ -310,10 +310,11 @@ fn bad_studies_are_refused_with_the_reason() {
             &["--vary", "lander.footpad_radius_m=-0.5:0.6:2"],
             &["at lander.footpad_radius_m = -0.5"],
         ),
+        // (A distribution, `inputs.slope_deg`, takes the value in its place.)
         bad_args(
             "a table",
-            &["--vary", "inputs.slope_deg=1:2:2"],
-            &["table of settings", "inputs.slope_deg.max"],
+            &["--vary", "surface.roughness=1:2:2"],
+            &["table of settings", "surface.roughness"],
         ),
         bad_args(
             "a fraction where a whole number goes",

@@ -12,6 +12,7 @@ mod hostile_files;
 mod inputs;
 mod interrupt;
 mod lander;
+mod law_inputs;
 mod layers;
 mod outcome_rules;
 mod outputs;

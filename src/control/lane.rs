@@ -4,12 +4,12 @@
 
 use super::allocation::{Wrench, quantise_carrying};
 use super::laws::{DescentDraw, LAW_MEMORY, LawCommand, attitude_torque, descent_force};
-use super::model::{ControlModel, draw};
+use super::model::ControlModel;
 use super::sensors::{Sensed, Truth};
 use super::thrust::Thrust;
 use crate::dist::{normal_quantile, quantile};
 use crate::rng::{stream, uniform_open01};
-use crate::scenario::{Dist, MAX_THRUSTERS, Sample, Target, law_grid};
+use crate::scenario::{Dist, MAX_THRUSTERS, Sample, Target};
 use glam::{DQuat, DVec3};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -182,12 +182,11 @@ fn small_rotation(v: DVec3) -> DQuat {
 const TIME_DUST_S: f64 = 1e-12;
 
 impl LaneControl {
-    /// The control loop of `sample`: its thruster errors, sensor biases and law parameters
-    /// drawn from streams of its own (law parameters on a grid at the sample's point of it).
+    /// The control loop of `sample`: its thruster errors and sensor biases drawn from
+    /// streams of its own, its law parameters the sample's (`Sample::law`).
     #[must_use]
     pub fn new(m: &ControlModel, sample: &Sample) -> LaneControl {
         let seed = sample.seed;
-        let g = law_grid(&m.config, sample.law_cell);
         let mut errors = stream(seed, "thrusters");
         let (mut force_b_n, mut moment_b_n_m) = (Vec::new(), Vec::new());
         for t in &m.thrusters {
@@ -207,19 +206,15 @@ impl LaneControl {
         let velocity_bias_m_s = normal3(&mut bias, s.velocity_bias_m_s);
         let altitude_bias_m = normal(&mut bias, s.altitude_bias_m);
         let nan = f64::NAN;
-        let (hold_down_thrust_n, hold_down_duration_s) =
-            m.config.hold_down.map_or((nan, nan), |h| {
-                (
-                    draw(&h.thrust_n, seed, "hold_down_thrust_n", g[0]),
-                    draw(&h.duration_s, seed, "hold_down_duration_s", g[1]),
-                )
-            });
-        let (kp_n_m_per_rad, kd_n_m_s_per_rad) = m.config.attitude_hold.map_or((nan, nan), |a| {
-            (
-                draw(&a.kp_n_m_per_rad, seed, "kp_n_m_per_rad", g[2]),
-                draw(&a.kd_n_m_s_per_rad, seed, "kd_n_m_s_per_rad", g[3]),
-            )
-        });
+        // The sample's law parameters (`Sample::law`), NaN in its summary where the law is
+        // not given.
+        let [thrust, duration, kp, kd, ..] = sample.law;
+        let (hold_down_thrust_n, hold_down_duration_s) = m
+            .config
+            .hold_down
+            .map_or((nan, nan), |_| (thrust, duration));
+        let (kp_n_m_per_rad, kd_n_m_s_per_rad) =
+            m.config.attitude_hold.map_or((nan, nan), |_| (kp, kd));
         LaneControl {
             force_b_n,
             moment_b_n_m,

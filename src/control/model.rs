@@ -3,9 +3,7 @@
 
 use super::allocation::Allocation;
 use super::laws::{DescentDraw, NamedLaw, registered};
-use crate::dist::quantile;
-use crate::rng::{stream, uniform_open01};
-use crate::scenario::{Control, Dist, G0_M_S2, Sample, Scenario, Thruster, law_grid};
+use crate::scenario::{Control, G0_M_S2, Sample, Scenario, Thruster};
 
 /// What stays fixed over a sweep: the control loop of the scenario, the thrusters as
 /// designed, and what the step-size bound needs.
@@ -86,32 +84,30 @@ impl ControlModel {
 }
 
 impl ControlModel {
-    /// The descent of `sample`, if the loop has one: each parameter drawn from a stream of
-    /// its own (at the sample's grid point for a grid). The initial state (a descent's
-    /// start) and the loop both take it from here.
+    /// The descent of `sample`, if the loop has one: its parameters are the sample's
+    /// (`Sample::law`, drawn with its other values). The initial state (a descent's start)
+    /// and the loop both take it from here.
     #[must_use]
     pub fn descent_draw(&self, sample: &Sample) -> Option<DescentDraw> {
         let d = self.config.descent.as_ref()?;
-        let g = law_grid(&self.config, sample.law_cell);
-        let seed = sample.seed;
+        let [
+            _,
+            _,
+            _,
+            _,
+            start_altitude_m,
+            start_speed_m_s,
+            braking_m_s2,
+            gain_per_s,
+            release_speed_m_s,
+        ] = sample.law;
         Some(DescentDraw {
-            start_altitude_m: draw(&d.start_altitude_m, seed, "descent_start_altitude_m", g[4]),
-            start_speed_m_s: draw(&d.start_speed_m_s, seed, "descent_start_speed_m_s", g[5]),
-            braking_m_s2: draw(&d.braking_m_s2, seed, "descent_braking_m_s2", g[6]),
-            gain_per_s: draw(&d.gain_per_s, seed, "descent_gain_per_s", g[7]),
-            release_speed_m_s: draw(
-                &d.release_speed_m_s,
-                seed,
-                "descent_release_speed_m_s",
-                g[8],
-            ),
+            start_altitude_m,
+            start_speed_m_s,
+            braking_m_s2,
+            gain_per_s,
+            release_speed_m_s,
             null_lateral_velocity: d.null_lateral_velocity,
         })
     }
-}
-
-/// A draw of `dist` for the sample with generator seed `seed` (its own stream, `name`), at
-/// `grid_index` where `dist` is a grid.
-pub(super) fn draw(dist: &Dist, seed: u64, name: &str, grid_index: u64) -> f64 {
-    quantile(dist, uniform_open01(&mut stream(seed, name)), grid_index)
 }

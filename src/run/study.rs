@@ -48,7 +48,8 @@ pub struct StudySettings {
 }
 
 /// The scenario text `base` (parsed) with `key` set to `value`, and the scenario it reads
-/// as; refused with the reader's message where the scenario refuses the value.
+/// as; refused with the reader's message where the scenario refuses the value. A key the
+/// scenario draws from a distribution takes the value in its place.
 fn with_value(base: &toml::Table, key: &str, value: f64) -> anyhow::Result<(String, Scenario)> {
     let leaf = key.rsplit('.').next().unwrap_or(key);
     let mut probe = base.clone();
@@ -64,9 +65,11 @@ fn with_value(base: &toml::Table, key: &str, value: f64) -> anyhow::Result<(Stri
             toml::Value::Integer(value as i64),
         ],
         Some(toml::Value::Float(_)) | None => vec![toml::Value::Float(value)],
+        // A distribution: the value replaces it.
+        Some(toml::Value::Table(t)) if t.contains_key("dist") => vec![toml::Value::Float(value)],
         Some(toml::Value::Table(_)) => bail!(
-            "--vary {key}: {key} is a table of settings in the scenario (a distribution?), \
-             not a number: vary one of its keys (e.g. {key}.max)"
+            "--vary {key}: {key} is a table of settings in the scenario, not a number: vary \
+             one of its keys"
         ),
         Some(other) => bail!(
             "--vary {key}: {key} is {} in the scenario, not a number",
@@ -92,21 +95,53 @@ fn with_value(base: &toml::Table, key: &str, value: f64) -> anyhow::Result<(Stri
     bail!("--vary {key}: at {key} = {value}, {e}")
 }
 
-/// The table of `table` that holds `key`'s last name (made where missing).
+/// The table of `table` that holds `key`'s last name (made where missing); a name of a
+/// list of tables (`[[thrusters]]`) is followed by the index of one, from 0
+/// (`thrusters.2.max_thrust_n`).
 fn parent_table<'t>(table: &'t mut toml::Table, key: &str) -> anyhow::Result<&'t mut toml::Table> {
     let names: Vec<&str> = key.split('.').collect();
+    let parents = names.len() - 1;
     let mut at = table;
-    for (i, name) in names[..names.len() - 1].iter().enumerate() {
+    let mut i = 0;
+    while i < parents {
+        let name = names[i];
+        let index = names[i + 1..parents]
+            .first()
+            .filter(|n| n.bytes().all(|b| b.is_ascii_digit()));
+        if index.is_some() && !at.contains_key(name) {
+            bail!("--vary {key}: the scenario has no [[{name}]] to take one of by its index");
+        }
         let entry = at
-            .entry((*name).to_string())
+            .entry(name.to_string())
             .or_insert_with(|| toml::Value::Table(toml::Table::new()));
         at = match entry {
             toml::Value::Table(t) => t,
+            toml::Value::Array(items) => {
+                let n = items.len();
+                let Some(j) = index.and_then(|j| j.parse::<usize>().ok()) else {
+                    bail!(
+                        "--vary {key}: `{name}` is a list of {n} tables in the scenario: name \
+                         one by its index from 0 ({name}.0.KEY to {name}.{}.KEY)",
+                        n.saturating_sub(1)
+                    )
+                };
+                i += 1;
+                match items.get_mut(j) {
+                    Some(toml::Value::Table(t)) => t,
+                    Some(_) => bail!("--vary {key}: `{name}` is not a list of tables"),
+                    None => bail!(
+                        "--vary {key}: the scenario has {n} [[{name}]] (indices 0 to {}), no \
+                         index {j}",
+                        n.saturating_sub(1)
+                    ),
+                }
+            }
             _ => bail!(
                 "--vary {key}: `{}` is a value in the scenario, not a table of keys",
                 names[..=i].join(".")
             ),
         };
+        i += 1;
     }
     Ok(at)
 }

@@ -1,7 +1,7 @@
 //! The `[control]` table: the control loop, its sensors and its laws (MODEL.md section 7).
 
 use super::error::ScenarioError;
-use super::inputs::{Dist, read_dist_at_least};
+use super::inputs::{Dist, LAW_PARAMETERS, read_dist_at_least};
 use super::reader::{Reader, table};
 
 table! {
@@ -166,14 +166,11 @@ table! {
     }
 }
 
-/// The law parameters a sample may draw, in the order they join the inputs' grid (after
-/// the inputs, the last varying fastest) and of `Control::parameters`.
-pub const LAW_PARAMETERS: usize = 9;
-
 impl Control {
     /// The distributions of the law parameters (`LAW_PARAMETERS`): hold-down thrust and
     /// duration, attitude-hold `kp` and `kd`, the descent's start altitude and speed,
-    /// braking, gain and release speed; `None` where the scenario has no such law.
+    /// braking, gain and release speed; `None` where the scenario has no such law. They
+    /// are the last values of a sample (`Sample::values`, from `FIRST_LAW_VALUE`).
     #[must_use]
     pub fn parameters(&self) -> [Option<Dist>; LAW_PARAMETERS] {
         let (h, a, d) = (
@@ -192,5 +189,30 @@ impl Control {
             d.map(|d| d.gain_per_s),
             d.map(|d| d.release_speed_m_s),
         ]
+    }
+
+    /// The distributions of the law parameters, as `parameters` orders them, to change.
+    pub fn parameters_mut(&mut self) -> [Option<&mut Dist>; LAW_PARAMETERS] {
+        let (h, a, d) = (
+            self.hold_down.as_mut(),
+            self.attitude_hold.as_mut(),
+            self.descent.as_mut(),
+        );
+        let (h0, h1) = h.map_or((None, None), |h| {
+            (Some(&mut h.thrust_n), Some(&mut h.duration_s))
+        });
+        let (a0, a1) = a.map_or((None, None), |a| {
+            (Some(&mut a.kp_n_m_per_rad), Some(&mut a.kd_n_m_s_per_rad))
+        });
+        let [d0, d1, d2, d3, d4] = d.map_or([None, None, None, None, None], |d| {
+            [
+                Some(&mut d.start_altitude_m),
+                Some(&mut d.start_speed_m_s),
+                Some(&mut d.braking_m_s2),
+                Some(&mut d.gain_per_s),
+                Some(&mut d.release_speed_m_s),
+            ]
+        });
+        [h0, h1, a0, a1, d0, d1, d2, d3, d4]
     }
 }

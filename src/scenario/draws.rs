@@ -1,22 +1,26 @@
-//! What a scenario draws per sample: the distribution of each value (`Sample::values`),
-//! the grid of grid inputs and of the control laws' parameters, and the inputs a Sobol-index
-//! design varies.
+//! What a scenario draws per sample: the distribution of each value (`Sample::values`:
+//! inputs, parameters and control-law parameters), their grid, and the values a
+//! Sobol-index design varies.
 
-use super::control::{Control, LAW_PARAMETERS};
+use super::control::Control;
 use super::definition::Scenario;
-use super::inputs::{Dist, Parameter, VALUES};
+use super::inputs::{Dist, FIRST_LAW_VALUE, LAW_PARAMETERS, Parameter, VALUES};
 
 /// The distribution of each value of `scenario`'s samples (`Sample::values`): a parameter
-/// that the scenario does not sample is fixed at its value.
+/// that the scenario does not sample is fixed at its value, a law parameter of a law the
+/// scenario has not at 0.
 #[must_use]
 pub fn value_dists(scenario: &Scenario) -> [Dist; VALUES] {
     let inputs = scenario.inputs.to_array();
+    let laws = law_dists(scenario.control.as_ref());
     std::array::from_fn(|k| {
         if k < inputs.len() {
             inputs[k]
-        } else {
+        } else if k < FIRST_LAW_VALUE {
             let p = Parameter::ALL[k - inputs.len()];
             scenario.sampled[p as usize].unwrap_or(Dist::Fixed(scenario.parameter(p)))
+        } else {
+            laws[k - FIRST_LAW_VALUE]
         }
     })
 }
@@ -43,32 +47,11 @@ fn law_dists(control: Option<&Control>) -> [Dist; LAW_PARAMETERS] {
         .map(|d| d.unwrap_or(Dist::Fixed(0.0)))
 }
 
-/// The distributions on the grid of `scenario`: its inputs and parameters, then its
-/// control laws' parameters, which therefore vary fastest.
-pub fn grid_dists(scenario: &Scenario) -> [Dist; VALUES + LAW_PARAMETERS] {
-    let values = value_dists(scenario);
-    let laws = law_dists(scenario.control.as_ref());
-    std::array::from_fn(|k| {
-        if k < values.len() {
-            values[k]
-        } else {
-            laws[k - values.len()]
-        }
-    })
-}
-
-/// The grid coordinate of each law parameter of the sample in law cell `law_cell`
-/// (`Sample::law_cell`) of a loop `control`: the law parameters vary fastest on the
-/// grid, so their digits are those of the cell alone.
-#[must_use]
-pub fn law_grid(control: &Control, law_cell: u64) -> [u64; LAW_PARAMETERS] {
-    grid_indices(&law_dists(Some(control)), law_cell)
-}
-
-/// Number of points of the grid (1 when no input or law parameter is a grid).
+/// Number of points of the grid (1 when no value is a grid). The law parameters, the last
+/// values, vary fastest on it.
 #[must_use]
 pub fn grid_size(scenario: &Scenario) -> u128 {
-    grid_dists(scenario)
+    value_dists(scenario)
         .iter()
         .map(|d| match d {
             Dist::Grid { count, .. } => u128::from(*count),
@@ -77,8 +60,9 @@ pub fn grid_size(scenario: &Scenario) -> u128 {
         .product()
 }
 
-/// The inputs and parameters that a Sobol-index design varies: those drawn from a
-/// distribution (not fixed), as positions in `Sample::values` (`value_name` names them).
+/// The values that a Sobol-index design varies: those drawn from a distribution (not
+/// fixed), as positions in `Sample::values` (`value_name` names them): inputs, parameters
+/// and law parameters alike.
 #[must_use]
 pub fn design_inputs(scenario: &Scenario) -> Vec<usize> {
     value_dists(scenario)

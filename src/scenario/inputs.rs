@@ -134,9 +134,79 @@ parameters! {
     RmsHeightM = "surface.roughness".rms_height_m ["m"] positive: false,
 }
 
-/// Number of values a sample draws: the inputs (`INPUT_FIELDS`), then the parameters
-/// (`PARAMETER_FIELDS`).
-pub const VALUES: usize = INPUT_FIELDS.len() + PARAMETERS;
+/// The built-in control laws' parameters a sample may draw (`Control::parameters`).
+pub const LAW_PARAMETERS: usize = 9;
+
+/// The law parameters, in the order of `Control::parameters`: column name, the name of the
+/// stream a sample draws it from (`rng::stream`), scenario key, and the range of its values.
+const LAW_FIELDS: [(&str, &str, &str, Range); LAW_PARAMETERS] = {
+    const AT_LEAST_0: Range = Range::at_least(0.0, "values of at least 0");
+    const ABOVE_0: Range = Range::at_least(f64::MIN_POSITIVE, "values greater than 0");
+    [
+        (
+            "hold_down_thrust_n",
+            "hold_down_thrust_n",
+            "control.hold_down.thrust_n",
+            AT_LEAST_0,
+        ),
+        (
+            "hold_down_duration_s",
+            "hold_down_duration_s",
+            "control.hold_down.duration_s",
+            AT_LEAST_0,
+        ),
+        (
+            "attitude_kp_n_m_per_rad",
+            "kp_n_m_per_rad",
+            "control.attitude_hold.kp_n_m_per_rad",
+            AT_LEAST_0,
+        ),
+        (
+            "attitude_kd_n_m_s_per_rad",
+            "kd_n_m_s_per_rad",
+            "control.attitude_hold.kd_n_m_s_per_rad",
+            AT_LEAST_0,
+        ),
+        (
+            "descent_start_altitude_m",
+            "descent_start_altitude_m",
+            "control.descent.start_altitude_m",
+            ABOVE_0,
+        ),
+        (
+            "descent_start_speed_m_s",
+            "descent_start_speed_m_s",
+            "control.descent.start_speed_m_s",
+            AT_LEAST_0,
+        ),
+        (
+            "descent_braking_m_s2",
+            "descent_braking_m_s2",
+            "control.descent.braking_m_s2",
+            ABOVE_0,
+        ),
+        (
+            "descent_gain_per_s",
+            "descent_gain_per_s",
+            "control.descent.gain_per_s",
+            ABOVE_0,
+        ),
+        (
+            "descent_release_speed_m_s",
+            "descent_release_speed_m_s",
+            "control.descent.release_speed_m_s",
+            ABOVE_0,
+        ),
+    ]
+};
+
+/// Where the law parameters start in `Sample::values`.
+pub const FIRST_LAW_VALUE: usize = INPUT_FIELDS.len() + PARAMETERS;
+
+/// Number of values a sample draws: the inputs (`INPUT_FIELDS`), the parameters
+/// (`PARAMETER_FIELDS`), then the built-in control laws' parameters (0 in a sample of a
+/// scenario without that law).
+pub const VALUES: usize = FIRST_LAW_VALUE + LAW_PARAMETERS;
 
 // The quasi-random design gives every value a dimension of the Sobol sequence.
 const _: () = assert!(VALUES <= crate::qmc::MAX_DIMENSIONS);
@@ -146,8 +216,34 @@ const _: () = assert!(VALUES <= crate::qmc::MAX_DIMENSIONS);
 pub fn value_name(k: usize) -> &'static str {
     if k < INPUT_FIELDS.len() {
         INPUT_FIELDS[k].0
-    } else {
+    } else if k < FIRST_LAW_VALUE {
         PARAMETER_FIELDS[k - INPUT_FIELDS.len()].0
+    } else {
+        LAW_FIELDS[k - FIRST_LAW_VALUE].0
+    }
+}
+
+/// The name of the stream value `k` of a sample draws from (`rng::stream`): its column
+/// name, but for the attitude hold's gains, whose streams kept their first names.
+#[must_use]
+pub fn stream_name(k: usize) -> &'static str {
+    if k < FIRST_LAW_VALUE {
+        value_name(k)
+    } else {
+        LAW_FIELDS[k - FIRST_LAW_VALUE].1
+    }
+}
+
+/// The scenario key of value `k` of a sample (`inputs.slope_deg`, `lander.mass_kg`,
+/// `control.hold_down.thrust_n`).
+#[must_use]
+pub fn value_key(k: usize) -> String {
+    if k < INPUT_FIELDS.len() {
+        format!("inputs.{}", INPUT_FIELDS[k].0)
+    } else if k < FIRST_LAW_VALUE {
+        Parameter::ALL[k - INPUT_FIELDS.len()].key().to_string()
+    } else {
+        LAW_FIELDS[k - FIRST_LAW_VALUE].2.to_string()
     }
 }
 
@@ -235,10 +331,13 @@ const ANY: Range = Range {
 };
 
 /// Whether `x` is a value that value `k` of a sample (`Sample::values`: the
-/// inputs, then the parameters) may take; if not, what the values may be.
+/// inputs, the parameters, then the law parameters) may take; if not, what the values may
+/// be.
 pub fn check_value(k: usize, x: f64) -> Result<(), &'static str> {
     let range = if k < INPUT_RANGES.len() {
         INPUT_RANGES[k]
+    } else if k >= FIRST_LAW_VALUE {
+        LAW_FIELDS[k - FIRST_LAW_VALUE].3
     } else if PARAMETER_POSITIVE[k - INPUT_RANGES.len()] {
         Range::at_least(f64::MIN_POSITIVE, "values greater than 0")
     } else {

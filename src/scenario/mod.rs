@@ -29,18 +29,17 @@ mod surface;
 mod table;
 mod thrusters;
 
-pub use control::{AttitudeHold, Control, Descent, HoldDown, LAW_PARAMETERS, Sensors, Target};
+pub use control::{AttitudeHold, Control, Descent, HoldDown, Sensors, Target};
 pub use damper::{Damper, PSI_PA, Stage, StrutAxes};
 pub use definition::{Design, Scenario};
 pub use draws::{
-    design_inputs, design_position, grid_dists, grid_indices, grid_size, law_grid, law_grid_size,
-    value_dists,
+    design_inputs, design_position, grid_indices, grid_size, law_grid_size, value_dists,
 };
 pub use error::ScenarioError;
 pub use initial::{AttitudeReference, Initial, Start};
 pub use inputs::{
-    Dist, INPUT_FIELDS, Inputs, PARAMETER_FIELDS, PARAMETERS, Parameter, Sampled, VALUES,
-    check_value, value_name,
+    Dist, FIRST_LAW_VALUE, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETER_FIELDS, PARAMETERS,
+    Parameter, Sampled, VALUES, check_value, stream_name, value_key, value_name,
 };
 pub use lander::{Geometry, Lander};
 pub use outcome::Outcome;

@@ -5,10 +5,10 @@
 
 use super::damper::StrutAxes;
 use super::definition::{Design, Scenario, read_scenario};
-use super::draws::{design_inputs, law_grid_size, value_dists};
+use super::draws::{design_inputs, value_dists};
 use super::error::ScenarioError;
 use super::initial::Start;
-use super::inputs::{Dist, Parameter, value_name};
+use super::inputs::{Dist, Parameter, value_key};
 use super::lander::Geometry;
 use super::reader::Reader;
 
@@ -111,24 +111,13 @@ impl Scenario {
         };
         let dists = value_dists(self);
         if let Some(k) = (0..dists.len()).find(|&k| matches!(dists[k], Dist::Grid { .. })) {
-            let name = value_name(k);
-            let key = Parameter::ALL
-                .iter()
-                .find(|p| p.name() == name)
-                .map_or(format!("inputs.{name}"), |p| p.key().to_string());
+            let key = value_key(k);
             return Err(invalid(
                 word,
                 &format!(
-                    "inputs drawn at random: {key} is a grid (give it a uniform \
-                     distribution over the same range)"
+                    "inputs, parameters and control law parameters drawn at random: {key} \
+                     is a grid (give it a uniform distribution over the same range)"
                 ),
-            ));
-        }
-        let laws = law_grid_size(self.control.as_ref());
-        if laws > 1 {
-            return Err(invalid(
-                word,
-                "control law parameters drawn at random, not on a grid",
             ));
         }
         if self.design == Design::SobolIndices && design_inputs(self).is_empty() {

@@ -1,8 +1,7 @@
-//! One sample: the values it drew (its inputs and parameters), its generator seed, its
-//! terrain tile and offset and its cell of the control laws' grid. `sampling` draws it;
-//! the physics runs it.
+//! One sample: the values it drew (its inputs, parameters and control-law parameters), its
+//! generator seed and its terrain tile and offset. `sampling` draws it; the physics runs it.
 
-use super::inputs::{INPUT_FIELDS, Inputs, PARAMETERS, VALUES};
+use super::inputs::{FIRST_LAW_VALUE, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETERS, VALUES};
 
 /// Everything that makes one sample differ from another.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,30 +19,33 @@ pub struct Sample {
     pub terrain_tile: u32,
     /// Offset of the landing point in the tile, along the slope's tangent axes, m.
     pub terrain_offset_m: [f64; 2],
-    /// The sample's cell of the grid of the control laws' parameters (0 where none is on a
-    /// grid; `law_grid` gives each parameter's coordinate): their values are drawn with the
-    /// control loop.
-    pub law_cell: u64,
+    /// The value of each built-in control law's parameter (`Control::parameters`) for this
+    /// sample: its draw, or the scenario's number (0 where the scenario has no such law).
+    pub law: [f64; LAW_PARAMETERS],
 }
 
 impl Sample {
-    /// The inputs, then the parameters.
+    /// The inputs, then the parameters, then the law parameters.
     #[must_use]
     pub fn values(&self) -> [f64; VALUES] {
         let inputs = self.inputs.to_array();
         std::array::from_fn(|k| {
             if k < inputs.len() {
                 inputs[k]
-            } else {
+            } else if k < FIRST_LAW_VALUE {
                 self.parameters[k - inputs.len()]
+            } else {
+                self.law[k - FIRST_LAW_VALUE]
             }
         })
     }
 
-    /// Sets the inputs and parameters from `values` (as `values` gives them).
+    /// Sets the inputs, parameters and law parameters from `values` (as `values` gives
+    /// them).
     pub fn set_values(&mut self, values: [f64; VALUES]) {
         let n = INPUT_FIELDS.len();
         self.inputs = Inputs::from_array(std::array::from_fn(|k| values[k]));
         self.parameters = std::array::from_fn(|k| values[n + k]);
+        self.law = std::array::from_fn(|k| values[FIRST_LAW_VALUE + k]);
     }
 }

@@ -7,7 +7,7 @@ use super::rows::FileRows;
 use super::sha256::file_sha256;
 use super::source::{Kind, head};
 use crate::scenario::{
-    Design, INPUT_FIELDS, InputTable, METADATA_KEYS, Parameter, Scenario, VALUES,
+    Design, FIRST_LAW_VALUE, INPUT_FIELDS, InputTable, METADATA_KEYS, Parameter, Scenario, VALUES,
 };
 use anyhow::bail;
 use std::path::{Path, PathBuf};
@@ -87,8 +87,40 @@ pub fn attach(scenario: &mut Scenario, path: &Path, keep_columns: bool) -> anyho
             };
         }
     }
+    widen_laws(scenario, &ranges, path)?;
     scenario.table = Some(Arc::new(table));
     Ok(())
+}
+
+/// A law parameter the table gives, as a parameter: its distribution in the scenario
+/// widened to the table's range where it does not hold it, so that the checks of the
+/// control loop (`control::check`: a hold-down thrust the thrusters give, a hold-down
+/// shorter than the run...) hold the table's values to what they hold the scenario's.
+fn widen_laws(
+    scenario: &mut Scenario,
+    ranges: &[Option<(f64, f64)>; VALUES],
+    path: &Path,
+) -> anyhow::Result<()> {
+    let Some(control) = scenario.control.as_mut() else {
+        return Ok(());
+    };
+    for (j, dist) in control.parameters_mut().into_iter().enumerate() {
+        if let (Some(d), Some((min, max))) = (dist, ranges[FIRST_LAW_VALUE + j]) {
+            let (lo, hi) = d.support();
+            if !(lo <= min && max <= hi) {
+                *d = crate::scenario::Dist::Uniform {
+                    min: lo.min(min),
+                    max: hi.max(max),
+                };
+            }
+        }
+    }
+    crate::control::check(scenario).map_err(|e| {
+        anyhow::anyhow!(
+            "--inputs {}: with the table's values of the control laws' parameters, {e}",
+            path.display()
+        )
+    })
 }
 
 /// Gives `scenario` the table of inputs that the run whose file `file` has metadata

@@ -1,7 +1,10 @@
-//! What a column of the user's table is to the sweep: an input value, the seed, the
-//! terrain, the sample index or a column passed through; result columns refused.
+//! What a column of the user's table is to the sweep: a value (an input, a parameter or a
+//! control law's parameter), the seed, the terrain, the sample index or a column passed
+//! through; result columns refused.
 
-use crate::scenario::{Geometry, INPUT_FIELDS, Parameter, Scenario, VALUES, value_name};
+use crate::scenario::{
+    FIRST_LAW_VALUE, Geometry, INPUT_FIELDS, Parameter, Scenario, VALUES, value_key, value_name,
+};
 use anyhow::{anyhow, bail};
 use std::path::Path;
 
@@ -29,7 +32,22 @@ pub(super) fn role(
     path: &Path,
 ) -> anyhow::Result<Role> {
     if let Some(k) = (0..VALUES).find(|&k| value_name(k) == name) {
-        if k >= INPUT_FIELDS.len() {
+        if k >= FIRST_LAW_VALUE {
+            let law = k - FIRST_LAW_VALUE;
+            let given = scenario
+                .control
+                .as_ref()
+                .is_some_and(|c| c.parameters()[law].is_some());
+            if !given {
+                let key = value_key(k);
+                let table = key.rsplit_once('.').map_or(key.as_str(), |(t, _)| t);
+                bail!(
+                    "{}: column {name} ({key}): the scenario has no [{table}], whose law \
+                     this parameter belongs to",
+                    path.display()
+                );
+            }
+        } else if k >= INPUT_FIELDS.len() {
             let p = Parameter::ALL[k - INPUT_FIELDS.len()];
             let refuse =
                 |why: &str| anyhow!("{}: column {name} ({}): {why}", path.display(), p.key());
@@ -90,7 +108,8 @@ pub(super) fn role(
 }
 
 /// Whether `name` is a column that a sweep writes as a result (of any lander, with any
-/// control loop); `sample` and `sample_seed` have roles of their own (`role`).
+/// control loop); `sample` and `sample_seed` have roles of their own (`role`), and so have
+/// the control laws' parameters, inputs among the control columns.
 pub(super) fn is_result_column(name: &str) -> bool {
     const RESULTS: [&str; 11] = [
         "outcome",
@@ -114,7 +133,7 @@ pub(super) fn is_result_column(name: &str) -> bool {
         || leg
         || crate::output::sweep::CONTROL_COLUMNS
             .iter()
-            .any(|c| c.0 == name)
+            .any(|c| c.0 == name && !(0..VALUES).any(|k| value_name(k) == name))
 }
 
 #[cfg(test)]
@@ -131,7 +150,13 @@ mod tests {
         ] {
             assert!(is_result_column(name), "{name}");
         }
-        for name in ["slope_deg", "leg_count", "legs_stroke_m", "my_column"] {
+        for name in [
+            "slope_deg",
+            "leg_count",
+            "legs_stroke_m",
+            "my_column",
+            "hold_down_thrust_n",
+        ] {
             assert!(!is_result_column(name), "{name}");
         }
     }

@@ -3,7 +3,7 @@
 
 use super::{Sim, constant_thrust, flight_scenario, posed};
 use crate::common::Table;
-use crate::lander::{quiet, sample_of};
+use crate::lander::{quiet, sample_in};
 use glam::DVec3;
 use touchdown::control::{ControlModel, LaneControl, Truth, attitude_torque};
 use touchdown::reference::Model;
@@ -148,7 +148,7 @@ fn thrust_attitude_pulse_width_gives_the_commanded_torque() {
     // kp 20) to saturated (10 deg), two gains.
     let mut table = Table::new("thrust: attitude hold by pulse-width thrusters, torque per period");
     for kp in [20.0, 5.0] {
-        let (_, m) = attitude_hold_model(kp);
+        let (s, m) = attitude_hold_model(kp);
         let period = m.period_s;
         for (roll, pitch) in [
             (0.05, 0.0),
@@ -189,7 +189,7 @@ fn thrust_attitude_pulse_width_gives_the_commanded_torque() {
             }
             let sample = Sample {
                 seed: 7,
-                ..sample_of(quiet())
+                ..sample_in(&s, quiet())
             };
             let mut control = LaneControl::new(&m, &sample);
             let mut t_s = 0.0;

@@ -2,7 +2,7 @@
 //! parameters are drawn per sample.
 
 use crate::common::Table;
-use crate::lander::{CG_HEIGHT_M, quiet, sample_of};
+use crate::lander::{CG_HEIGHT_M, quiet, sample_in};
 use kernels::isa::Isa;
 use touchdown::reference::{Model, StepReport, initial_state, run};
 use touchdown::sampling;
@@ -55,10 +55,13 @@ fn thrust_descent_releases_into_a_ballistic_fall() {
         let s = perfect_descent(latency);
         let model = Model::new(&s);
         for release in [5.0, 7.5, 10.0] {
-            let sample = sample_of(Inputs {
-                release_height_m: release,
-                ..quiet()
-            });
+            let sample = sample_in(
+                &s,
+                Inputs {
+                    release_height_m: release,
+                    ..quiet()
+                },
+            );
             let mut fired_after_release = 0.0_f64;
             // Readings of the descent that would have allowed a release.
             let mut could_release = 0;
@@ -151,12 +154,15 @@ fn thrust_descent_nulls_the_lateral_velocity_with_lateral_thrusters() {
         for null in [true, false] {
             let s = lateral_descent(latency, null);
             let model = Model::new(&s);
-            let sample = sample_of(Inputs {
-                release_height_m: 7.5,
-                velocity_error_x_m_s: ex,
-                velocity_error_y_m_s: ey,
-                ..quiet()
-            });
+            let sample = sample_in(
+                &s,
+                Inputs {
+                    release_height_m: 7.5,
+                    velocity_error_x_m_s: ex,
+                    velocity_error_y_m_s: ey,
+                    ..quiet()
+                },
+            );
             let summary = run(&model, &sample, |_: &StepReport| {});
             let c = *summary.control.expect("a control summary");
             let case = format!("latency {latency}, null_lateral_velocity {null}");

@@ -6,7 +6,7 @@
 //! measured against expected values before it fails on any row, so that `cargo test
 //! --release --test tests thrust -- --nocapture` shows every number, passing or not.
 
-use crate::lander::{quiet, sample_of};
+use crate::lander::{quiet, sample_in};
 use glam::{DQuat, DVec3};
 use kernels::isa::{Isa, KernelKind, Precision};
 use touchdown::control::Thrust;
@@ -66,7 +66,7 @@ struct Sim {
 impl Sim {
     fn of(scenario: &Scenario, inputs: Inputs<f64>) -> Sim {
         let model = Model::new(scenario);
-        let sample = sample_of(inputs);
+        let sample = sample_in(scenario, inputs);
         let surface = Surface::of(&sample);
         let state = initial_state(&model, &surface, &sample);
         let report = StepReport::new(model.legs.len());
