@@ -2,7 +2,7 @@
 //!
 //! The `touchdown` program is this library's `commands::main`. The library is public for
 //! those who build on it: a program that embeds touchdown to run a control law of its own
-//! (`control::register_law`, then `commands::main`, as `examples/user_law.rs` does), and
+//! (`control::register_law`, then `commands::main`, as `examples/user_law` does), and
 //! the integration tests and benches, which drive the reference model, the kernels' set-up,
 //! the scenario and the files directly. Every public item is documented (`missing_docs`);
 //! what nothing outside its module needs is private.

@@ -1,7 +1,8 @@
 //! `touchdown report`: what a sweep file says, for people. Outcome counts with 95 %
 //! confidence intervals, the allowable slope per sector of downhill azimuth relative to the
-//! lander, the peak loads, and (with thrusters) the propellant and firings. Markdown, so that it reads on a terminal and pastes into a
-//! design note.
+//! lander, the peak loads, (with thrusters) the propellant and firings, and (with a
+//! descent) the state the descent released the lander in. Markdown, so that it reads on a
+//! terminal and pastes into a design note.
 
 use crate::output::sweep::{SweepBatch, SweepFile};
 use crate::reference::Outcome;
@@ -30,6 +31,7 @@ struct Gathered {
     sectors: Vec<Vec<(f64, bool)>>,
     loads: [Load; 5],
     thrust: Thrust,
+    release: Release,
     /// Each sample's slope and outcome, where the report weighs them onto a terrain.
     slopes: Vec<(f64, Outcome)>,
 }
@@ -68,11 +70,13 @@ impl Gathered {
             },
         ];
         let mut thrust = Thrust::default();
+        let mut release = Release::default();
         let mut slopes: Vec<(f64, Outcome)> = Vec::new();
         for b in file.batches() {
             let b = b?;
             let f = |name: &str| b.f64s(name);
             let control = ThrustColumns::of(&b)?;
+            let released = ReleaseColumns::of(&b)?;
             let outcomes = b.outcomes()?;
             let (slope, azimuth, yaw) =
                 (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
@@ -104,6 +108,9 @@ impl Gathered {
                 if let Some(c) = &control {
                     thrust.push(c, i, o);
                 }
+                if let Some(r) = &released {
+                    release.push(r, i);
+                }
             }
         }
         Ok(Gathered {
@@ -111,6 +118,7 @@ impl Gathered {
             sectors,
             loads,
             thrust,
+            release,
             slopes,
         })
     }
@@ -129,6 +137,7 @@ pub fn report(
         mut sectors,
         mut loads,
         mut thrust,
+        mut release,
         slopes,
     } = Gathered::read(&mut file, terrain.is_some())?;
     let meta = file.metadata();
@@ -145,6 +154,7 @@ pub fn report(
     write_allowable(&mut t, &mut sectors);
     write_loads(&mut t, &mut loads);
     thrust.write(&mut t);
+    release.write(&mut t);
     write_end(&mut t, path, meta);
     Ok(t)
 }
@@ -372,6 +382,106 @@ impl Thrust {
             if *k > 0 {
                 let _ = writeln!(t, "| {} | {k} | {:.4} |", o.name(), kg / *k as f64);
             }
+        }
+    }
+}
+
+/// The release columns of a batch of a sweep with a descent.
+struct ReleaseColumns<'a> {
+    time_s: &'a Float64Array,
+    altitude_m: &'a Float64Array,
+    velocity_m_s: [&'a Float64Array; 3],
+}
+
+impl<'a> ReleaseColumns<'a> {
+    /// The columns of `b`, or `None` in a sweep without a descent (no `release_time_s`).
+    fn of(b: &'a SweepBatch<'_>) -> anyhow::Result<Option<ReleaseColumns<'a>>> {
+        if !b.has("release_time_s") {
+            return Ok(None);
+        }
+        Ok(Some(ReleaseColumns {
+            time_s: b.f64s("release_time_s")?,
+            altitude_m: b.f64s("release_altitude_m")?,
+            velocity_m_s: [
+                b.f64s("release_vx_m_s")?,
+                b.f64s("release_vy_m_s")?,
+                b.f64s("release_vz_m_s")?,
+            ],
+        }))
+    }
+}
+
+/// The state a descent released its landers in, over a sweep with one: time, footpad
+/// height, and the velocity down and along the ground.
+#[derive(Default)]
+struct Release {
+    /// Samples of a sweep with a descent.
+    samples: u64,
+    /// Of the released samples: release time (s), footpad height (m), vertical velocity
+    /// (m/s, up positive), horizontal speed (m/s).
+    values: [Vec<f64>; 4],
+}
+
+impl Release {
+    fn push(&mut self, c: &ReleaseColumns<'_>, i: usize) {
+        self.samples += 1;
+        let time = c.time_s.value(i);
+        // NaN: contact came before the release.
+        if time.is_nan() {
+            return;
+        }
+        let [vx, vy, vz] = c.velocity_m_s.map(|v| v.value(i));
+        for (v, x) in self
+            .values
+            .iter_mut()
+            .zip([time, c.altitude_m.value(i), vz, vx.hypot(vy)])
+        {
+            v.push(x);
+        }
+    }
+
+    /// The section of the report (nothing for a sweep without a descent).
+    fn write(&mut self, t: &mut String) {
+        if self.samples == 0 {
+            return;
+        }
+        let released = self.values[0].len();
+        let first = self.samples - released as u64;
+        let _ = write!(
+            t,
+            "\n## Release of the descent\n\n{released} of {} samples released by the descent \
+             law",
+            self.samples
+        );
+        if first > 0 {
+            let _ = write!(
+                t,
+                "; in the other {first} contact came first (`release_time_s` NaN)"
+            );
+        }
+        let _ = writeln!(
+            t,
+            ". Of the released (the `release_*` columns; velocity in I):\n\n\
+             | quantity | mean | smallest | median | 99th percentile | largest |\n\
+             |---|---:|---:|---:|---:|---:|"
+        );
+        if released == 0 {
+            return;
+        }
+        for (v, (name, unit)) in self.values.iter_mut().zip([
+            ("release time", "s"),
+            ("footpad height at release", "m"),
+            ("vertical velocity at release, up", "m/s"),
+            ("horizontal speed at release", "m/s"),
+        ]) {
+            let mean = v.iter().sum::<f64>() / v.len() as f64;
+            let median = quantile(v, 0.5);
+            let p99 = quantile(v, 0.99);
+            let (min, max) = (v[0], v[v.len() - 1]);
+            let _ = writeln!(
+                t,
+                "| {name} ({unit}) | {mean:.4} | {min:.4} | {median:.4} | {p99:.4} | {max:.4} |"
+            );
         }
     }
 }

@@ -1,12 +1,11 @@
-//! A control law of the user's own (`control::Law`): the example program
-//! `examples/user_law.rs` runs `touchdown sweep` on a scenario that names its law, the
-//! `touchdown` binary alone refuses that scenario naming the law, and the law (the
-//! example's own code, included here) gives the same outcomes in the kernels and in the
-//! scalar reference.
+//! A control law of the user's own (`control::Law`): the `touchdown` binary alone refuses
+//! a scenario that names a law it does not have, naming the law, and the law of the
+//! example program `examples/user_law` (its own code, included here) gives the same
+//! outcomes in the kernels and in the scalar reference. (The example program's sweep is
+//! tested in its own crate: examples/user_law/tests/sweep.rs.)
 
-use crate::common::{BIN, TempDir, touchdown};
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use crate::common::{TempDir, touchdown};
+use std::path::Path;
 use std::sync::atomic::AtomicUsize;
 use touchdown::reference::{self, Model};
 use touchdown::sampling;
@@ -15,20 +14,12 @@ use touchdown::sweep;
 
 /// The example's law, `DampThenHold` (its `main` unused here).
 #[allow(dead_code)]
-#[path = "../examples/user_law.rs"]
+#[path = "../examples/user_law/src/main.rs"]
 mod example;
 
 fn scenario_text() -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/user-law.toml"))
         .unwrap()
-}
-
-/// The example program, built beside the `touchdown` binary (cargo builds the examples
-/// of a package for its tests).
-fn example_binary() -> PathBuf {
-    let dir = Path::new(BIN).parent().expect("the binary's directory");
-    dir.join("examples")
-        .join(format!("user_law{}", std::env::consts::EXE_SUFFIX))
 }
 
 #[test]
@@ -55,32 +46,6 @@ fn the_touchdown_binary_refuses_a_law_it_does_not_have() {
         "no output file: {:?}",
         dir.entries()
     );
-}
-
-#[test]
-fn the_example_program_sweeps_with_its_law() {
-    let dir = TempDir::new("user_law_example");
-    let scenario = dir.write("scenario.toml", &scenario_text());
-    let out = dir.join("sweep.arrow");
-    let status = Command::new(example_binary())
-        .args([
-            "sweep",
-            "--scenario",
-            scenario.to_str().unwrap(),
-            "--samples",
-            "64",
-        ])
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .expect("run the example program (cargo test builds it)");
-    assert!(
-        status.status.success(),
-        "{}",
-        String::from_utf8_lossy(&status.stderr)
-    );
-    let text = touchdown(dir.path(), &["report", out.to_str().unwrap()]);
-    assert_eq!(text.code, Some(0), "{text}");
 }
 
 /// The example's law registered in this process: every sample of a sweep through the f64
@@ -122,8 +87,16 @@ fn the_law_gives_the_same_outcomes_in_the_kernels_and_the_reference() {
             disagree += 1;
             continue;
         }
-        // The hold-down of the user's law is not the built-in hold_down's.
-        assert_eq!(kc.hold_down_impulse_n_s, 0.0);
+        // The user's law's push of 15 N along -Z_B once in contact is its hold-down: it
+        // counts (the reference's as the kernels', to the propellant's tolerance).
+        assert!(
+            (rc.hold_down_impulse_n_s - kc.hold_down_impulse_n_s).abs()
+                <= 1e-4 + 0.01 * rc.hold_down_impulse_n_s,
+            "sample {}: hold-down impulse {} against {}",
+            row.sample.index,
+            rc.hold_down_impulse_n_s,
+            kc.hold_down_impulse_n_s
+        );
         assert!(
             (rc.propellant_kg - kc.propellant_kg).abs() <= 1e-6 + 0.01 * rc.propellant_kg,
             "sample {}: propellant {} against {}",
@@ -134,6 +107,16 @@ fn the_law_gives_the_same_outcomes_in_the_kernels_and_the_reference() {
         // 15 N for 8 s at Isp 220 s: 0.056 kg, besides the attitude firings.
         if kc.propellant_kg > 0.05 {
             pushed += 1;
+            // Its 120 N s count as hold-down (0 before issue 29), give or take the on-times
+            // quantised to whole 0.02 s (0.04 s for the 0.0375 s asked of each 10 N thruster
+            // per 0.1 s period: +7 %) and the thrusters' 3 % magnitude errors: 122-134 N s
+            // measured in 200 samples.
+            assert!(
+                (100.0..=150.0).contains(&kc.hold_down_impulse_n_s),
+                "sample {}: hold-down impulse {}",
+                row.sample.index,
+                kc.hold_down_impulse_n_s
+            );
         }
     }
     println!("{n} samples: {disagree} outcome disagreements, {pushed} pushed for 8 s");

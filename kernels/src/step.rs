@@ -169,10 +169,16 @@ pub fn footpad_heights<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut 
     lowest
 }
 
+/// Below this, what would be left of the time to a control event after a step is the
+/// rounding of the steps subtracted from it, not time, s: the step ends on the event
+/// instead of leaving a step of 1e-17 s to reach it (the reference's `step_size` too).
+pub const EVENT_DUST_S: f64 = 1e-12;
+
 /// The step every lane takes (see the reference's `step_size`), given the least height of
 /// its footpads above the base plane (`footpad_heights`): `step_s` near the surface,
 /// longer in free flight where no footpad can reach the terrain within it; 0 for empty
-/// lanes. With `THRUST`, never past the lane's next control event.
+/// lanes. With `THRUST`, never past the lane's next control event, and onto it where it is
+/// less than `EVENT_DUST_S` further.
 #[inline(always)]
 #[must_use]
 pub fn step_size<L: Lane, const THRUST: bool>(p: &Params<L>, block: &Block<L>, lowest: L) -> L {
@@ -201,7 +207,9 @@ pub fn step_size<L: Lane, const THRUST: bool>(p: &Params<L>, block: &Block<L>, l
     }
     let dt = block.active.select(dt.min(remaining), L::splat(0.0));
     if THRUST {
-        dt.min(block.thrust.event_in_s)
+        let event = block.thrust.event_in_s;
+        let onto = event.simd_lt(dt + L::splat(EVENT_DUST_S)) & block.active;
+        onto.select(event, dt.min(event))
     } else {
         dt
     }

@@ -3,6 +3,8 @@
 
 use super::flags::{parse_count, parse_every, parse_seed};
 use super::print::{say, shown};
+use crate::output::sweep::control_columns;
+use crate::output::trace::control_values;
 use crate::reference::Summary;
 use crate::run::trace::{TraceSettings, trace};
 use crate::scenario::Sample;
@@ -123,6 +125,32 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
             l.stroke_m * 1e3,
             l.absorbed_j
         ));
+    }
+    t.push_str(&flown(scenario, s));
+    t
+}
+
+/// What the control loop flew, as the sweep's columns of that name have it: the drawn law
+/// parameters, the propellant, firings and hold-down impulse, and a descent's release
+/// state (empty without a control loop).
+fn flown(scenario: &Scenario, s: &Summary) -> String {
+    let values = control_values(&control_columns(scenario), s);
+    if values.is_empty() {
+        return String::new();
+    }
+    let mut t = String::from("\ncontrol loop (as the sweep's columns of these names)\n");
+    let released = values
+        .iter()
+        .find(|(name, ..)| *name == "release_time_s")
+        .is_none_or(|(.., time)| !time.is_nan());
+    for (name, unit, value) in values {
+        if name == "release_time_s" && !released {
+            t.push_str(&format!("  {name:<28} never: contact came first\n"));
+        } else if unit == "1" {
+            t.push_str(&format!("  {name:<28} {value:>12}\n"));
+        } else if released || !name.starts_with("release_") {
+            t.push_str(&format!("  {name:<28} {value:>12.6} {unit}\n"));
+        }
     }
     t
 }

@@ -34,7 +34,8 @@ pub enum Phase {
     Done,
 }
 
-/// A command: every thruster's on-time in its period, and whether hold-down asked for it.
+/// A command: every thruster's on-time in its period, and whether it holds down (the
+/// built-in hold-down's, or a user's law's push along -Z_B after contact was sensed).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Command {
     on_s: [f64; MAX_THRUSTERS],
@@ -55,7 +56,9 @@ pub struct ControlSummary {
     pub on_time_s: f64,
     /// Firings: a thruster on in a control period counts once.
     pub firings: u32,
-    /// Integral of the thrust magnitude of the thrusters fired by `hold_down`, N s.
+    /// Integral of the thrust magnitude of the thrusters fired by hold-down commands, N s:
+    /// the built-in `hold_down`'s, and a user's law's that ask for a force along -Z_B
+    /// once contact has been sensed.
     pub hold_down_impulse_n_s: f64,
     /// The sample's drawn hold-down thrust (NaN without `hold_down`; so are the other
     /// drawn law parameters without their law).
@@ -125,6 +128,8 @@ pub struct LaneControl {
     memory: [f64; LAW_MEMORY],
     /// Which thrusters fire in the segment under way.
     firing_now: [bool; MAX_THRUSTERS],
+    /// Whether the sensors have read contact at an instant of the user's law's phase.
+    touched: bool,
     /// What the loop did so far (`finish` adds the propellant).
     summary: ControlSummary,
 }
@@ -247,6 +252,7 @@ impl LaneControl {
             instants: 0,
             memory: [0.0; LAW_MEMORY],
             firing_now: [false; MAX_THRUSTERS],
+            touched: false,
             summary: ControlSummary {
                 hold_down_thrust_n,
                 hold_down_duration_s,
@@ -472,7 +478,13 @@ impl LaneControl {
                 if command.done {
                     self.phase = Phase::Done;
                 }
-                (command.wrench, false)
+                // A user's law holds down where it asks for a force along -Z_B once contact
+                // has been sensed: its impulse counts as the built-in hold_down's.
+                self.touched |= sensed.contact;
+                (
+                    command.wrench,
+                    self.touched && command.wrench.force_b_n.z < 0.0,
+                )
             }
             Phase::Descent => (self.descent(m, &sensed, truth.normal), false),
             Phase::Fall => (self.attitude_hold(m, &sensed, truth.normal), false),

@@ -384,6 +384,28 @@ pub struct TraceInfo<'a> {
     pub summary: &'a Summary,
     /// The table of inputs the sample's row came from, if any.
     pub table: Option<&'a crate::scenario::InputTable>,
+    /// The control columns a sweep of the scenario writes (`sweep::control_columns`): what
+    /// flew, whose values the metadata stores (`control_values`).
+    pub control: &'a [&'static str],
+}
+
+/// The values of the control columns `names` (`CONTROL_COLUMNS`) in `summary`, as a sweep
+/// row has them: name, unit and value (none without a control loop).
+#[must_use]
+pub fn control_values(
+    names: &[&'static str],
+    summary: &Summary,
+) -> Vec<(&'static str, &'static str, f64)> {
+    let Some(c) = summary.control.as_deref() else {
+        return Vec::new();
+    };
+    super::sweep::CONTROL_COLUMNS
+        .iter()
+        .filter(|(name, ..)| names.contains(name))
+        .filter_map(|&(name, unit, ..)| {
+            super::sweep::control_value(name).map(|value| (name, unit, value(c)))
+        })
+        .collect()
 }
 
 /// Runs `sample` with the reference model and writes every `every`-th step to `path`, the
@@ -472,7 +494,9 @@ pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> an
 }
 
 /// The trace's provenance: engine, kind, scenario, seeds, the sample (index, outcome,
-/// terrain, inputs, parameters) and its table of inputs, and `every`.
+/// terrain, inputs, parameters) and its table of inputs, `every`, and with a control loop
+/// what flew (`touchdown.control.NAME`: its law parameters, propellant and release state,
+/// as the sweep's columns of that name).
 fn metadata(info: &TraceInfo<'_>, every: u64) -> BTreeMap<String, String> {
     let s = info.summary;
     let mut meta = BTreeMap::from([
@@ -512,6 +536,9 @@ fn metadata(info: &TraceInfo<'_>, every: u64) -> BTreeMap<String, String> {
     ]);
     if let Some(t) = &info.table {
         meta.extend(t.metadata());
+    }
+    for (name, _, value) in control_values(info.control, s) {
+        meta.insert(format!("touchdown.control.{name}"), value.to_string());
     }
     for ((name, _), value) in crate::scenario::INPUT_FIELDS
         .iter()

@@ -135,7 +135,7 @@ pub(crate) fn span(values: impl Iterator<Item = f64>, pad: f64) -> std::ops::Ran
 pub(crate) fn line_panel(
     area: &Area<'_>,
     caption: &str,
-    (x_desc, y_desc): (&str, &str),
+    axes: (&str, &str),
     x_range: std::ops::Range<f64>,
     lines: &[Line],
 ) -> anyhow::Result<()> {
@@ -143,6 +143,41 @@ pub(crate) fn line_panel(
         lines.iter().flat_map(|l| l.points.iter().map(|p| p.1)),
         0.05,
     );
+    lines_in(area, caption, axes, x_range, y_range, lines)
+}
+
+/// `line_panel` with its legend above the lines: the y axis reaches up by the legend's
+/// height, so that no line runs under it (for panels whose lines fill their width).
+pub(crate) fn line_panel_legend_clear(
+    area: &Area<'_>,
+    caption: &str,
+    axes: (&str, &str),
+    x_range: std::ops::Range<f64>,
+    lines: &[Line],
+) -> anyhow::Result<()> {
+    let y = span(
+        lines.iter().flat_map(|l| l.points.iter().map(|p| p.1)),
+        0.05,
+    );
+    // The plotting height: the panel less its caption (18 points: about 27 pixels with its
+    // gap), the x labels (38) and the margins (2 x 8). The legend: 18 pixels a line (14-point
+    // labels) and 14 of box and gap; the lines keep at least half the height.
+    let plot_px = f64::from(area.dim_in_pixel().1) - 27.0 - 38.0 - 16.0;
+    let legend_px = 18.0 * lines.len() as f64 + 14.0;
+    let free = (1.0 - legend_px / plot_px).max(0.5);
+    let top = y.start + (y.end - y.start) / free;
+    lines_in(area, caption, axes, x_range, y.start..top, lines)
+}
+
+/// `line_panel` with the y axis spanning `y_range`.
+fn lines_in(
+    area: &Area<'_>,
+    caption: &str,
+    (x_desc, y_desc): (&str, &str),
+    x_range: std::ops::Range<f64>,
+    y_range: std::ops::Range<f64>,
+    lines: &[Line],
+) -> anyhow::Result<()> {
     let mut chart = ChartBuilder::on(area)
         .caption(caption, (FONT, 18))
         .margin(8)
@@ -225,5 +260,73 @@ mod tests {
         assert_eq!(pieces[0], &[(0.0, 170.0), (1.0, 179.0)][..]);
         assert_eq!(pieces[2], &[(4.0, 175.0)][..]);
         assert_eq!(line.pieces(false).len(), 1);
+    }
+
+    /// The legend's box in a panel's pixels: its top and bottom rows (the rows of its
+    /// border's grey in a run of at least 100 pixels) and its left column.
+    fn legend_box(pixels: &[u8], width: usize) -> (usize, usize, usize) {
+        let grey = [160, 160, 160];
+        let mut edges = Vec::new();
+        for (y, row) in pixels.chunks(width * 3).enumerate() {
+            let mut run = 0;
+            for (x, p) in row.chunks(3).enumerate() {
+                run = if p == grey { run + 1 } else { 0 };
+                if run == 100 {
+                    edges.push((y, x + 1 - run));
+                    break;
+                }
+            }
+        }
+        let (top, left) = edges[0];
+        (top, edges[edges.len() - 1].0, left)
+    }
+
+    /// The top row holding colour `c` left of column `before`.
+    fn top_row_with(pixels: &[u8], width: usize, c: RGBColor, before: usize) -> Option<usize> {
+        pixels
+            .chunks(width * 3)
+            .position(|row| row.chunks(3).take(before).any(|p| p == [c.0, c.1, c.2]))
+    }
+
+    /// A panel (of trace-thrust.png's size) whose three lines run at their top value across
+    /// the whole time axis, the worst case for a legend in a corner: drawn with
+    /// `line_panel_legend_clear`, the legend's box (its border's grey) lies wholly above
+    /// every line; drawn with `line_panel`, it covers them.
+    #[test]
+    fn a_clear_legend_lies_above_the_lines() {
+        register_font().unwrap();
+        let (w, h) = (1100u32, 325u32);
+        let lines: Vec<Line> = (0..3)
+            .map(|k| Line {
+                label: format!("line {k} with a long label"),
+                colour: SERIES_COLOURS[k],
+                points: vec![(0.0, 0.0), (0.5, 10.0 - k as f64), (100.0, 10.0 - k as f64)],
+            })
+            .collect();
+        let draw = |clear: bool| {
+            let mut pixels = vec![0u8; w as usize * h as usize * 3];
+            {
+                let root = BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area();
+                root.fill(&WHITE).unwrap();
+                let panel = if clear {
+                    line_panel_legend_clear
+                } else {
+                    line_panel
+                };
+                panel(&root, "panel", ("x", "y"), 0.0..100.0, &lines).unwrap();
+                root.present().unwrap();
+            }
+            let (_, bottom, left) = legend_box(&pixels, w as usize);
+            // Left of the box: the lines, not the legend's samples of them.
+            let top_line = (0..3)
+                .filter_map(|k| top_row_with(&pixels, w as usize, SERIES_COLOURS[k], left - 5))
+                .min()
+                .unwrap();
+            (bottom, top_line)
+        };
+        let (legend_bottom, top_line) = draw(true);
+        assert!(legend_bottom < top_line, "{legend_bottom} {top_line}");
+        let (legend_bottom, top_line) = draw(false);
+        assert!(legend_bottom >= top_line, "{legend_bottom} {top_line}");
     }
 }

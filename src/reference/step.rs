@@ -7,6 +7,7 @@ use super::rigid_body::{self, Body};
 use crate::control::Thrust;
 use crate::slope::Surface;
 use glam::{DMat3, DVec3};
+use kernels::step::EVENT_DUST_S;
 
 /// The state of one lander.
 #[derive(Debug, Clone, PartialEq)]
@@ -189,7 +190,8 @@ pub fn add_time(t: &mut f64, error: &mut f64, dt: f64) {
 /// `flight_step_max_s`, but only half the time in which a footpad could reach the highest
 /// point of the terrain, approaching at the CG speed plus rate times leg reach plus the
 /// speed gravity and thrust add within a longest flight step. Never beyond `t_max_s`, nor
-/// past the next control event.
+/// past the next control event, and onto it where it is less than `EVENT_DUST_S` further
+/// (what is left after the steps subtracted from it is their rounding, not time).
 #[must_use]
 pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
     let remaining = model.t_max_s - state.t_s;
@@ -224,5 +226,7 @@ pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
             dt = (0.5 * clearance / speed).clamp(model.step_s, model.flight_step_max_s);
         }
     }
-    dt.min(remaining).min(state.thrust.event_in_s)
+    let dt = dt.min(remaining);
+    let event = state.thrust.event_in_s;
+    if event < dt + EVENT_DUST_S { event } else { dt }
 }

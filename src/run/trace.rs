@@ -82,6 +82,7 @@ pub fn trace(args: &TraceSettings) -> anyhow::Result<Traced> {
         sample: &sample,
         summary: &summary,
         table: scenario.table.as_deref(),
+        control: &crate::output::sweep::control_columns(&scenario),
     };
     let rows = trace::write(&args.out, &model, &info, args.every)?;
     Ok(Traced {

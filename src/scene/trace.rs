@@ -204,6 +204,18 @@ impl Trace {
         (self.time[0], self.time[self.time.len() - 1])
     }
 
+    /// What the control loop flew, as the trace's metadata stores it: the value of the
+    /// sweep's control column `name` (`touchdown.control.NAME`: law parameters, propellant,
+    /// release state); `None` where the trace has none (no control loop, or a trace of an
+    /// older touchdown), or it is no number.
+    #[must_use]
+    pub fn control_value(&self, name: &str) -> Option<f64> {
+        self.table
+            .meta
+            .get(&format!("touchdown.control.{name}"))
+            .and_then(|v| v.parse().ok())
+    }
+
     /// Whether the trace has column `name`.
     #[must_use]
     pub fn has_column(&self, name: &str) -> bool {

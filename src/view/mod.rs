@@ -20,6 +20,10 @@ const PLACEHOLDER: &str = "\"__TOUCHDOWN_TRACE_JSON__\"";
 /// Most times a page holds.
 pub const MAX_TIMES: usize = 4000;
 
+/// Thrusters per chart of the page: as many entries as a chart's legend shows in its
+/// narrowest width (260 pixels) as it shows four legs.
+const THRUSTERS_PER_CHART: usize = 4;
+
 /// What `view` wrote.
 #[derive(Debug, Clone, Copy)]
 pub struct Written {
@@ -322,9 +326,13 @@ fn charts(o: &mut String, scene: &Scene) {
         "damper stroke per leg (mm)",
         &per_leg("stroke_m", 1000.0),
     );
-    if scene.trace.thrusters > 0 {
+    // The thrusters in charts of at most four, as the legs: a chart's legend is one row
+    // across it, and twelve entries there showed five.
+    let n = scene.trace.thrusters;
+    for first in (0..n).step_by(THRUSTERS_PER_CHART) {
         o.push(',');
-        let lines: Vec<(String, String, f64)> = (0..scene.trace.thrusters)
+        let last = (first + THRUSTERS_PER_CHART).min(n) - 1;
+        let lines: Vec<(String, String, f64)> = (first..=last)
             .map(|j| {
                 (
                     format!("thruster {j}"),
@@ -333,6 +341,11 @@ fn charts(o: &mut String, scene: &Scene) {
                 )
             })
             .collect();
-        chart(o, "thrust per thruster (N)", &lines);
+        let title = if n <= THRUSTERS_PER_CHART {
+            "thrust per thruster (N)".to_string()
+        } else {
+            format!("thrust of thrusters {first}-{last} of 0-{} (N)", n - 1)
+        };
+        chart(o, &title, &lines);
     }
 }

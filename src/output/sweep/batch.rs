@@ -1,11 +1,44 @@
 //! Rows of a sweep as one record batch of its schema, column by column.
 
+use crate::control::ControlSummary;
 use crate::scenario::INPUT_FIELDS;
 use crate::sweep::Row;
 use arrow_array::builder::{Float64Builder, StringBuilder, UInt32Builder, UInt64Builder};
 use arrow_array::{ArrayRef, RecordBatch};
 use arrow_schema::SchemaRef;
 use std::sync::Arc;
+
+/// The value of the control column `name` (`CONTROL_COLUMNS`) in a lander's summary of its
+/// control loop (firings as a number), for sweep rows and traces alike; `None` for a name
+/// that is not one.
+#[must_use]
+pub fn control_value(name: &str) -> Option<fn(&ControlSummary) -> f64> {
+    fn descent(c: &ControlSummary) -> crate::control::DescentDraw {
+        c.descent.unwrap_or_default()
+    }
+    let get: fn(&ControlSummary) -> f64 = match name {
+        "propellant_kg" => |c| c.propellant_kg,
+        "thrust_on_time_s" => |c| c.on_time_s,
+        "firings" => |c| f64::from(c.firings),
+        "hold_down_impulse_n_s" => |c| c.hold_down_impulse_n_s,
+        "hold_down_thrust_n" => |c| c.hold_down_thrust_n,
+        "hold_down_duration_s" => |c| c.hold_down_duration_s,
+        "attitude_kp_n_m_per_rad" => |c| c.kp_n_m_per_rad,
+        "attitude_kd_n_m_s_per_rad" => |c| c.kd_n_m_s_per_rad,
+        "descent_start_altitude_m" => |c| descent(c).start_altitude_m,
+        "descent_start_speed_m_s" => |c| descent(c).start_speed_m_s,
+        "descent_braking_m_s2" => |c| descent(c).braking_m_s2,
+        "descent_gain_per_s" => |c| descent(c).gain_per_s,
+        "descent_release_speed_m_s" => |c| descent(c).release_speed_m_s,
+        "release_time_s" => |c| c.release_time_s,
+        "release_altitude_m" => |c| c.release_altitude_m,
+        "release_vx_m_s" => |c| c.release_velocity_m_s[0],
+        "release_vy_m_s" => |c| c.release_velocity_m_s[1],
+        "release_vz_m_s" => |c| c.release_velocity_m_s[2],
+        _ => return None,
+    };
+    Some(get)
+}
 /// A record batch of `rows` in `schema`, the columns passed through from a table of
 /// inputs (`kept`, last in the schema) as they are.
 pub fn batch(
@@ -60,28 +93,11 @@ pub fn batch(
         cols.push(f64s(&|r| r.summary.legs[k].absorbed_j));
     }
     let control = |r: &Row| r.summary.control.as_deref().copied().unwrap_or_default();
-    let descent = |r: &Row| control(r).descent.unwrap_or_default();
     let computed = schema.fields().len() - kept.len();
     for field in schema.fields()[..computed].iter().skip(cols.len()) {
         cols.push(match field.name().as_str() {
-            "propellant_kg" => f64s(&|r| control(r).propellant_kg),
-            "thrust_on_time_s" => f64s(&|r| control(r).on_time_s),
             "firings" => u32s(&|r| control(r).firings),
-            "hold_down_impulse_n_s" => f64s(&|r| control(r).hold_down_impulse_n_s),
-            "hold_down_thrust_n" => f64s(&|r| control(r).hold_down_thrust_n),
-            "hold_down_duration_s" => f64s(&|r| control(r).hold_down_duration_s),
-            "attitude_kp_n_m_per_rad" => f64s(&|r| control(r).kp_n_m_per_rad),
-            "attitude_kd_n_m_s_per_rad" => f64s(&|r| control(r).kd_n_m_s_per_rad),
-            "descent_start_altitude_m" => f64s(&|r| descent(r).start_altitude_m),
-            "descent_start_speed_m_s" => f64s(&|r| descent(r).start_speed_m_s),
-            "descent_braking_m_s2" => f64s(&|r| descent(r).braking_m_s2),
-            "descent_gain_per_s" => f64s(&|r| descent(r).gain_per_s),
-            "descent_release_speed_m_s" => f64s(&|r| descent(r).release_speed_m_s),
-            "release_time_s" => f64s(&|r| control(r).release_time_s),
-            "release_altitude_m" => f64s(&|r| control(r).release_altitude_m),
-            "release_vx_m_s" => f64s(&|r| control(r).release_velocity_m_s[0]),
-            "release_vy_m_s" => f64s(&|r| control(r).release_velocity_m_s[1]),
-            "release_vz_m_s" => f64s(&|r| control(r).release_velocity_m_s[2]),
+            other if let Some(value) = control_value(other) => f64s(&|r| value(&control(r))),
             other => match crate::scenario::Parameter::ALL
                 .iter()
                 .find(|p| p.name() == other)

@@ -12,7 +12,7 @@ mod read;
 mod schema;
 mod writer;
 
-pub use batch::batch;
+pub use batch::{batch, control_value};
 pub use read::{SweepBatch, SweepFile, leg_count};
 pub use schema::{
     CONTROL_COLUMNS, SHARD_KEYS, SweepInfo, control_columns, parameter_columns, schema,

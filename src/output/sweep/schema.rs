@@ -66,7 +66,8 @@ pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 18] = [
     (
         "hold_down_impulse_n_s",
         "N s",
-        "thrust integral of the hold-down firings",
+        "thrust integral of the hold-down firings: the built-in hold_down's, and a user's \
+         law's commands that ask for a force along -Z_B once contact has been sensed",
         "",
     ),
     (

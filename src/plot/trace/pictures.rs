@@ -44,9 +44,7 @@ pub(crate) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
 /// CG position, velocity and acceleration, and the attitude with the tilt from the slope
 /// normal.
 fn cg_picture(root: &Area<'_>, tr: &Series) -> anyhow::Result<()> {
-    let root = root
-        .titled(&format!("CG and attitude, {}", tr.about()), (FONT, 22))
-        .map_err(drawing)?;
+    let root = tr.titled(root, "CG and attitude")?;
     let p = root.split_evenly((4, 1));
     let xyz = |prefix: &str, unit: &str| -> anyhow::Result<Vec<Line>> {
         ["x", "y", "z"]

@@ -1,7 +1,7 @@
 //! A trace's columns as the lines of its pictures: against time, held as staircases, per
 //! leg, the tilt from the slope normal, the control loop's phases and firings.
 
-use crate::plot::canvas::{Line, SERIES_COLOURS, span};
+use crate::plot::canvas::{Area, FONT, Line, SERIES_COLOURS, drawing, span};
 use crate::scene::Trace;
 
 /// Time axis label of every panel.
@@ -25,6 +25,71 @@ impl Series {
             normal: [sa * cb, sa * sb, ca],
             trace,
         })
+    }
+
+    /// What the control loop flew, for the captions of its pictures, in lines of at most
+    /// about `width` characters: the drawn law parameters, a descent's release state and
+    /// the propellant (none for a trace without them).
+    pub(super) fn flown(&self, width: usize) -> Vec<String> {
+        let v = |name: &str| self.trace.control_value(name);
+        let mut parts = Vec::new();
+        if let (Some(f), Some(d)) = (v("hold_down_thrust_n"), v("hold_down_duration_s")) {
+            parts.push(format!("hold-down {f:.2} N for {d:.2} s"));
+        }
+        if let (Some(kp), Some(kd)) = (v("attitude_kp_n_m_per_rad"), v("attitude_kd_n_m_s_per_rad"))
+        {
+            parts.push(format!(
+                "attitude hold kp {kp:.3} N m/rad, kd {kd:.3} N m s/rad"
+            ));
+        }
+        if let Some(h) = v("descent_start_altitude_m") {
+            let at = |name| v(name).unwrap_or(f64::NAN);
+            parts.push(format!(
+                "descent from {h:.2} m at {:.3} m/s, braking {:.4} m/s^2, gain {:.3}/s, release \
+                 below {:.4} m/s",
+                at("descent_start_speed_m_s"),
+                at("descent_braking_m_s2"),
+                at("descent_gain_per_s"),
+                at("descent_release_speed_m_s"),
+            ));
+            parts.push(match v("release_time_s") {
+                Some(t) if t.is_finite() => format!(
+                    "released at {t:.2} s, footpads {:.3} m up, v ({:.4}, {:.4}, {:.4}) m/s",
+                    at("release_altitude_m"),
+                    at("release_vx_m_s"),
+                    at("release_vy_m_s"),
+                    at("release_vz_m_s"),
+                ),
+                _ => "not released: contact came first".to_string(),
+            });
+        }
+        if let Some(p) = v("propellant_kg") {
+            parts.push(format!("propellant {:.1} g", p * 1e3));
+        }
+        let mut lines: Vec<String> = Vec::new();
+        for part in parts {
+            match lines.last_mut() {
+                Some(l) if l.len() + 2 + part.len() <= width => {
+                    l.push_str("; ");
+                    l.push_str(&part);
+                }
+                _ => lines.push(part),
+            }
+        }
+        lines
+    }
+
+    /// `root` titled "`what`, sample N of seed S: OUTCOME at T s", with what the control
+    /// loop flew (`flown`) on the lines below; returns the area under them.
+    pub(super) fn titled<'a>(&self, root: &Area<'a>, what: &str) -> anyhow::Result<Area<'a>> {
+        let mut area = root
+            .titled(&format!("{what}, {}", self.about()), (FONT, 22))
+            .map_err(drawing)?;
+        // 15-point text is about 8 pixels a character.
+        for line in self.flown(usize::try_from(root.dim_in_pixel().0 / 8).unwrap_or(100)) {
+            area = area.titled(&line, (FONT, 15)).map_err(drawing)?;
+        }
+        Ok(area)
     }
 
     /// "sample N of seed S: OUTCOME at T s", for the captions.
@@ -158,5 +223,51 @@ impl Series {
             }
         }
         Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Series;
+    use crate::run::trace::{TraceSettings, trace};
+    use std::path::Path;
+
+    /// The captions of a descent's trace: its law parameters, release state and
+    /// propellant as the trace stores them; a passive trace's have none.
+    #[test]
+    fn captions_carry_what_flew() {
+        let dir = std::env::temp_dir().join(format!("touchdown-captions-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("descent.arrow");
+        let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/descent.toml");
+        let settings = TraceSettings {
+            sweep: None,
+            scenario: Some(scenario),
+            seed: None,
+            inputs: None,
+            sample: 0,
+            out: out.clone(),
+            every: 100,
+        };
+        let done = trace(&settings).unwrap();
+        let c = done.summary.control.unwrap();
+        let text = Series::read(&out).unwrap().flown(110).join("\n");
+        for part in [
+            "attitude hold kp 20.000 N m/rad, kd 40.000 N m s/rad".to_string(),
+            "descent from 15.00 m at 0.200 m/s".to_string(),
+            format!("released at {:.2} s", c.release_time_s),
+            format!("propellant {:.1} g", c.propellant_kg * 1e3),
+        ] {
+            assert!(text.contains(&part), "{part:?} not in\n{text}");
+        }
+        let passive = dir.join("passive.arrow");
+        let settings = TraceSettings {
+            scenario: None,
+            out: passive.clone(),
+            ..settings
+        };
+        trace(&settings).unwrap();
+        assert!(Series::read(&passive).unwrap().flown(110).is_empty());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

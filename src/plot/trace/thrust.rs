@@ -2,16 +2,16 @@
 //! thruster's firings, the propellant used) and what the sensors read against the truth.
 
 use super::series::{Series, TIME};
-use crate::plot::canvas::{Area, FONT, Line, SERIES_COLOURS, drawing, line_panel};
+use crate::plot::canvas::{
+    Area, FONT, Line, SERIES_COLOURS, drawing, line_panel, line_panel_legend_clear,
+};
 use plotters::prelude::*;
 
 /// The thrust of a control loop: on the lander (hold-down along -Z_B, across it, and the
 /// sum of the thrusters' magnitudes) with the loop's phases, its moment about the CG, when
 /// each thruster fires, and the propellant used.
 pub(super) fn thrust_picture(root: &Area<'_>, tr: &Series) -> anyhow::Result<()> {
-    let root = root
-        .titled(&format!("Thrust, {}", tr.about()), (FONT, 22))
-        .map_err(drawing)?;
+    let root = tr.titled(root, "Thrust")?;
     let p = root.split_evenly((4, 1));
     let range = tr.time_range();
     let (x, y, z) = (
@@ -34,7 +34,7 @@ pub(super) fn thrust_picture(root: &Area<'_>, tr: &Series) -> anyhow::Result<()>
             phases.join(", ")
         )
     };
-    line_panel(
+    line_panel_legend_clear(
         &p[0],
         &caption,
         (TIME, "force (N)"),
@@ -62,7 +62,7 @@ pub(super) fn thrust_picture(root: &Area<'_>, tr: &Series) -> anyhow::Result<()>
             )
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
-    line_panel(
+    line_panel_legend_clear(
         &p[1],
         "thrust moment about the CG",
         (TIME, "moment (N m)"),
@@ -70,7 +70,7 @@ pub(super) fn thrust_picture(root: &Area<'_>, tr: &Series) -> anyhow::Result<()>
         &moment,
     )?;
     firing_panel(&p[2], tr, range.clone())?;
-    line_panel(
+    line_panel_legend_clear(
         &p[3],
         "propellant used",
         (TIME, "propellant (g)"),
@@ -148,15 +148,7 @@ fn firing_panel(area: &Area<'_>, tr: &Series, range: std::ops::Range<f64>) -> an
 /// What the control loop's sensors read at its control instants (held until the next)
 /// against the true state: tilt, body rates, CG velocity and altitude.
 pub(super) fn sensors_picture(root: &Area<'_>, tr: &Series) -> anyhow::Result<()> {
-    let root = root
-        .titled(
-            &format!(
-                "Sensed (held from each control instant) and true, {}",
-                tr.about()
-            ),
-            (FONT, 22),
-        )
-        .map_err(drawing)?;
+    let root = tr.titled(root, "Sensed (held from each control instant) and true")?;
     let p = root.split_evenly((4, 1));
     let range = tr.time_range();
     let pair = |truth: &str, sensed: &str, label: &str, k: usize| -> anyhow::Result<[Line; 2]> {

@@ -1,6 +1,8 @@
 //! A control law of your own, run on many touchdowns: this program registers it under a
 //! name and then is the `touchdown` command itself, so a scenario can name the law:
-//! `cargo run --release --example user_law -- sweep --scenario examples/user-law.toml`.
+//! `cargo run --release -p user_law -- sweep --scenario examples/user-law.toml` (from the
+//! repository's root; a crate of its own, so that it builds without touchdown's
+//! dev-dependencies).
 use glam::DVec3;
 use touchdown::control::{LAW_MEMORY, Law, LawCommand, Sensed, register_law};
 
