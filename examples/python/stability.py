@@ -33,13 +33,14 @@ MIN_SAMPLES = 100
 SECTORS = int(360 / SECTOR_DEG)
 
 # Every outcome a sweep can give, in the order `touchdown report` lists them.
-OUTCOMES = ("stable", "tipped", "sliding", "bouncing", "diverged")
+OUTCOMES = ("stable", "tipped", "sliding", "bouncing", "diverged", "held")
 COLOURS = {
     "stable": "tab:green",
     "tipped": "tab:red",
     "sliding": "tab:orange",
     "bouncing": "tab:blue",
     "diverged": "black",
+    "held": "tab:purple",
 }
 USED_COLUMNS = ("slope_deg", "downhill_azimuth_deg", "yaw_deg", "outcome")
 
