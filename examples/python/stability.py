@@ -236,7 +236,8 @@ def print_tables(path, df, schema, meta, sectors, polygon, h):
 
     print("\n## Outcomes\n\n| outcome | samples | share |\n|---|---:|---:|")
     counts = dict(df.group_by("outcome").len().iter_rows())
-    for name in OUTCOMES:
+    # held: listed, as the report lists it, for sweeps with a control loop only
+    for name in (o for o in OUTCOMES if o != "held" or "propellant_kg" in schema.names):
         k = counts.get(name, 0)
         print(f"| {name} | {k} | {100 * k / df.height:.2f} % |")
 
