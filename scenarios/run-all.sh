@@ -53,8 +53,8 @@ shopt -s nullglob
 scenarios=("$here"/*.toml)
 [[ ${#scenarios[@]} -gt 0 ]] || { echo "run-all.sh: no *.toml in $here" >&2; exit 2; }
 
-echo "| scenario | samples | wall time s | stable % | tipped % | sliding % | bouncing % | diverged % | allowable slope per sector, deg (0-45 / 45-90 / ... / 315-360) |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---|"
+echo "| scenario | samples | wall time s | stable % | tipped % | sliding % | bouncing % | diverged % | held % | allowable slope per sector, deg (0-45 / 45-90 / ... / 315-360) |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"
 for f in "${scenarios[@]}"; do
     name=$(basename "$f" .toml)
     echo "run-all.sh: $name ..." >&2
@@ -71,7 +71,7 @@ for f in "${scenarios[@]}"; do
         function trim(s) { gsub(/^[ \t]+|[ \t]+$/, "", s); return s }
         /^[0-9]+ samples, seed/ { samples = $1 + 0 }
         /^## / { section = $0 }
-        section == "## Outcomes" && /^\| (stable|tipped|sliding|bouncing|diverged) \|/ {
+        section == "## Outcomes" && /^\| (stable|tipped|sliding|bouncing|diverged|held) \|/ {
             share[trim($2)] = trim($4)
         }
         section == "## Allowable slope" && /^\| [0-9]/ {
@@ -83,8 +83,11 @@ for f in "${scenarios[@]}"; do
         END {
             if (n == 0 || samples == 0) { print "run-all.sh: cannot parse the report of " name > "/dev/stderr"; exit 1 }
             o = ""
-            split("stable tipped sliding bouncing diverged", k, " ")
-            for (i = 1; i <= 5; i++) { s = share[k[i]]; sub(/ %$/, "", s); o = o " | " s }
+            # held: listed only by the reports of sweeps with a control loop ("-" otherwise)
+            split("stable tipped sliding bouncing diverged held", k, " ")
+            for (i = 1; i <= 6; i++) {
+                s = (k[i] in share) ? share[k[i]] : "-"; sub(/ %$/, "", s); o = o " | " s
+            }
             printf "| %s | %d | %.1f%s | %s |\n", name, samples, end - start, o, slopes
         }' "$outdir/$name.md"
 done

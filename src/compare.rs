@@ -18,6 +18,9 @@ struct Outcomes {
     engine: String,
     /// (sample, outcome code), in file order.
     rows: Vec<(u64, u8)>,
+    /// Whether the sweep has a control loop (a `propellant_kg` column): only then can a
+    /// lander end `held`.
+    controlled: bool,
 }
 
 fn read(path: &Path) -> anyhow::Result<Outcomes> {
@@ -31,6 +34,7 @@ fn read(path: &Path) -> anyhow::Result<Outcomes> {
         .get("touchdown.engine")
         .cloned()
         .ok_or_else(|| anyhow!("{}: no touchdown.engine", path.display()))?;
+    let controlled = file.schema().field_with_name("propellant_kg").is_ok();
     let mut rows = Vec::new();
     for b in file.batches() {
         let b = b?;
@@ -40,7 +44,12 @@ fn read(path: &Path) -> anyhow::Result<Outcomes> {
         }
     }
     rows.sort_unstable_by_key(|r| r.0);
-    Ok(Outcomes { seed, engine, rows })
+    Ok(Outcomes {
+        seed,
+        engine,
+        rows,
+        controlled,
+    })
 }
 
 /// The difference of one outcome's share, B minus A, over `n` paired samples of which
@@ -111,6 +120,10 @@ pub fn compare(a: &Path, b: &Path) -> anyhow::Result<String> {
     for (p, q) in x.rows.iter().zip(&y.rows) {
         table[usize::from(p.1)][usize::from(q.1)] += 1;
     }
+    // `held` is listed where a lander can be held: with a control loop in A or B.
+    let held = Outcome::Held as usize;
+    let controlled = x.controlled || y.controlled || table[held].iter().sum::<u64>() > 0;
+    let listed: Vec<usize> = Outcome::listed(controlled).map(|o| o as usize).collect();
     let mut t = String::new();
     let _ = writeln!(
         t,
@@ -126,7 +139,8 @@ pub fn compare(a: &Path, b: &Path) -> anyhow::Result<String> {
         "## Outcome shares\n\n| outcome | A | B | B − A | 95 % interval, paired | 95 % interval, \
          were they independent |\n|---|---:|---:|---:|---:|---:|"
     );
-    for (o, outcome) in Outcome::ALL.iter().enumerate() {
+    for &o in &listed {
+        let outcome = Outcome::ALL[o];
         let in_a: u64 = table[o].iter().sum();
         let in_b: u64 = table.iter().map(|r| r[o]).sum();
         let gained = in_b - table[o][o];
@@ -149,11 +163,15 @@ pub fn compare(a: &Path, b: &Path) -> anyhow::Result<String> {
     let _ = writeln!(
         t,
         "\n## Samples by outcome in A (rows) and in B (columns)\n\n| A \\ B | {} |\n|---|{}",
-        Outcome::ALL.map(Outcome::name).join(" | "),
-        "---:|".repeat(k)
+        listed
+            .iter()
+            .map(|&o| Outcome::ALL[o].name())
+            .collect::<Vec<_>>()
+            .join(" | "),
+        "---:|".repeat(listed.len())
     );
-    for (o, row) in table.iter().enumerate() {
-        let cells: Vec<String> = row.iter().map(u64::to_string).collect();
+    for &o in &listed {
+        let cells: Vec<String> = listed.iter().map(|&q| table[o][q].to_string()).collect();
         let _ = writeln!(t, "| {} | {} |", Outcome::ALL[o].name(), cells.join(" | "));
     }
     let changed: u64 = n - (0..k).map(|o| table[o][o]).sum::<u64>();

@@ -146,8 +146,10 @@ pub fn report(
         bail!("{} holds no samples", path.display());
     }
 
+    // `held` is listed where a lander can be held: in a sweep with a control loop.
+    let controlled = thrust.controlled() || counts[Outcome::Held as usize] > 0;
     let mut t = String::new();
-    write_outcomes(&mut t, path, meta, &counts, total);
+    write_outcomes(&mut t, path, meta, &counts, total, controlled);
     if let Some((terrain, text)) = terrain {
         write_terrain(&mut t, path, meta, &slopes, terrain, text)?;
     }
@@ -159,13 +161,15 @@ pub fn report(
     Ok(t)
 }
 
-/// The title, the samples and the outcome shares with their intervals.
+/// The title, the samples and the outcome shares with their intervals (of every outcome
+/// but `held` in a sweep without a control loop, `controlled` false).
 fn write_outcomes(
     t: &mut String,
     path: &Path,
     meta: &arrow_schema::Metadata,
     counts: &[u64; Outcome::ALL.len()],
     total: u64,
+    controlled: bool,
 ) {
     let _ = writeln!(t, "# touchdown report: {}\n", path.display());
     let _ = writeln!(
@@ -179,7 +183,7 @@ fn write_outcomes(
         t,
         "| outcome | samples | share | 95 % interval |\n|---|---:|---:|---:|"
     );
-    for (name, k) in Outcome::ALL.iter().map(|o| o.name()).zip(counts) {
+    for (name, k) in Outcome::listed(controlled).map(|o| (o.name(), &counts[o as usize])) {
         let (lo, hi) = wilson_interval(*k, total);
         let _ = writeln!(
             t,
@@ -345,9 +349,14 @@ impl Thrust {
         self.by_outcome[o as usize].1 += 1;
     }
 
+    /// Whether the sweep has a control loop (its rows carry propellant).
+    fn controlled(&self) -> bool {
+        !self.values[0].is_empty()
+    }
+
     /// The section of the report (nothing for a sweep without a control loop).
     fn write(&mut self, t: &mut String) {
-        if self.values[0].is_empty() {
+        if !self.controlled() {
             return;
         }
         let total: f64 = self.values[0].iter().sum();

@@ -150,6 +150,8 @@ pub struct Row {
     pub samples: u64,
     /// Samples per outcome, in the order of `Outcome::ALL`.
     pub counts: [u64; Outcome::ALL.len()],
+    /// Whether the value's sweep has a control loop (only then may a lander end `held`).
+    pub controlled: bool,
     /// The allowable slope per sector (as `touchdown report` finds it).
     pub allowable: [Allowable; SECTORS],
     /// The least static tipping limit over each sector's azimuths (none where the gear
@@ -164,6 +166,7 @@ impl Row {
     /// the file `path`.
     pub fn read(value: f64, path: &Path, scenario: &Scenario, samples: u64) -> anyhow::Result<Row> {
         let mut file = SweepFile::open(path)?;
+        let controlled = file.schema().field_with_name("propellant_kg").is_ok();
         let mut counts = [0u64; Outcome::ALL.len()];
         let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
         let mut rows = 0;
@@ -209,6 +212,7 @@ impl Row {
             file: path.to_path_buf(),
             samples,
             counts,
+            controlled,
             allowable,
             static_limit,
             static_range,
@@ -307,9 +311,16 @@ pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Resu
     file.commit(out)
 }
 
+/// The outcomes a study lists: `held` only where a value's lander can be held.
+fn listed(rows: &[Row]) -> impl Iterator<Item = Outcome> {
+    let held = Outcome::Held as usize;
+    Outcome::listed(rows.iter().any(|r| r.controlled || r.counts[held] > 0))
+}
+
 /// Per outcome: its samples, its share and the share's 95 % interval.
 fn outcome_columns(c: &mut Columns, rows: &[Row]) {
-    for (k, o) in Outcome::ALL.iter().enumerate() {
+    for o in listed(rows) {
+        let k = o as usize;
         let name = o.name();
         c.fields.push(field(
             name,
@@ -461,15 +472,16 @@ pub fn markdown(rows: &[Row], about: &About<'_>) -> String {
     let _ = writeln!(t, "## Outcomes (share, 95 % interval)\n");
     let leaf = about.vary.leaf();
     let _ = write!(t, "| {leaf} | samples |");
-    for o in Outcome::ALL {
-        let _ = write!(t, " {} |", o.name());
+    let outcomes: Vec<usize> = listed(rows).map(|o| o as usize).collect();
+    for &k in &outcomes {
+        let _ = write!(t, " {} |", Outcome::ALL[k].name());
     }
     let _ = write!(t, "\n|---:|---:|");
-    t.push_str(&"---:|".repeat(Outcome::ALL.len()));
+    t.push_str(&"---:|".repeat(outcomes.len()));
     t.push('\n');
     for r in rows {
         let _ = write!(t, "| {} | {} |", r.value, r.samples);
-        for k in 0..Outcome::ALL.len() {
+        for &k in &outcomes {
             let (p, lo, hi) = r.share(k);
             let _ = write!(
                 t,

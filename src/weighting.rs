@@ -356,6 +356,8 @@ pub struct Weighted {
     pub uncovered: f64,
     /// The sweep's range of slopes, deg.
     pub range: (f64, f64),
+    /// Whether the sweep has a control loop (only then is `held` listed).
+    pub controlled: bool,
 }
 
 /// Weighs samples `(slope, outcome)` of a sweep of `scenario` onto `terrain`.
@@ -443,6 +445,7 @@ pub fn weigh(
         samples: samples.len(),
         uncovered: uncovered.max(0.0),
         range: (min, max),
+        controlled: scenario.control.is_some() || samples.iter().any(|(_, o)| *o == Outcome::Held),
     })
 }
 
@@ -459,7 +462,8 @@ pub fn markdown(w: &Weighted, terrain: &SlopeDistribution, text: &str) -> String
         w.samples,
         w.effective_samples
     );
-    for (o, s) in Outcome::ALL.iter().zip(&w.shares) {
+    for o in Outcome::listed(w.controlled) {
+        let s = &w.shares[o as usize];
         let _ = writeln!(
             t,
             "| {} | {:.2} % | {:.2} – {:.2} % |",

@@ -33,13 +33,14 @@ MIN_SAMPLES = 100
 SECTORS = int(360 / SECTOR_DEG)
 
 # Every outcome a sweep can give, in the order `touchdown report` lists them.
-OUTCOMES = ("stable", "tipped", "sliding", "bouncing", "diverged")
+OUTCOMES = ("stable", "tipped", "sliding", "bouncing", "diverged", "held")
 COLOURS = {
     "stable": "tab:green",
     "tipped": "tab:red",
     "sliding": "tab:orange",
     "bouncing": "tab:blue",
     "diverged": "black",
+    "held": "tab:purple",
 }
 USED_COLUMNS = ("slope_deg", "downhill_azimuth_deg", "yaw_deg", "outcome")
 
@@ -235,7 +236,8 @@ def print_tables(path, df, schema, meta, sectors, polygon, h):
 
     print("\n## Outcomes\n\n| outcome | samples | share |\n|---|---:|---:|")
     counts = dict(df.group_by("outcome").len().iter_rows())
-    for name in OUTCOMES:
+    # held: listed, as the report lists it, for sweeps with a control loop only
+    for name in (o for o in OUTCOMES if o != "held" or "propellant_kg" in schema.names):
         k = counts.get(name, 0)
         print(f"| {name} | {k} | {100 * k / df.height:.2f} % |")
 

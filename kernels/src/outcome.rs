@@ -17,6 +17,8 @@ pub const SLIDING: f64 = 2.0;
 pub const BOUNCING: f64 = 3.0;
 /// Code of `diverged`.
 pub const DIVERGED: f64 = 4.0;
+/// Code of `held` (in contact at `t_max`, the control loop still powered).
+pub const HELD: f64 = 5.0;
 
 /// A leg within this gap of the surface bears on it for the rest rule of `stable`, m. A
 /// lander balanced on two footpads with a third one hovering at nanometres, on and off
@@ -97,7 +99,13 @@ pub fn observe<L: Lane, const DAMPERS: bool, const THRUST: bool>(
     let active = block.active & block.track.outcome.simd_lt(zero);
     let t = &mut block.track;
     t.steps += active.select(one, zero);
-    let acceleration = block.force_n * p.inverse_mass_per_kg;
+    // The specific force (what an accelerometer reads): contact and, with a control loop,
+    // the thrust of the step (in I, turned as the step turned it), not gravity.
+    let mut force = block.force_n;
+    if THRUST {
+        force += block.start_rotation.mul_vec3(block.thrust.force_b_n);
+    }
+    let acceleration = force * p.inverse_mass_per_kg;
     // The accumulators below (peaks, least tilt cosine, deepest penetration) start finite
     // and never become NaN: `max_into` and `min_into` apply.
     t.peak_acceleration_squared =
@@ -263,9 +271,15 @@ pub fn observe<L: Lane, const DAMPERS: bool, const THRUST: bool>(
         // At t_max, at rest since before this step: its footpads were seen to stick (on
         // the first step of a rest they are not checked, and a slow slider would pass every
         // other step).
+        // In contact with the loop still powered: `held` (only lanes with a control loop).
+        let on_surface = if THRUST {
+            passive.select(L::splat(SLIDING), L::splat(HELD))
+        } else {
+            L::splat(SLIDING)
+        };
         let at_end = (at_rest & in_rest).select(
             L::splat(STABLE),
-            touching.select(L::splat(SLIDING), L::splat(BOUNCING)),
+            touching.select(on_surface, L::splat(BOUNCING)),
         );
         let code = diverged.select(
             L::splat(DIVERGED),

@@ -28,7 +28,12 @@ pub(super) const PLUME: RGBColor = RGBColor(110, 190, 255);
 /// The captions' text.
 pub(super) const INK: RGBColor = RGBColor(20, 20, 24);
 /// Outcome colours in the order of `Outcome::ALL`, as the sweep plots draw them.
-pub(super) const OUTCOME: [RGBColor; 5] = OUTCOME_COLOURS;
+pub(super) const OUTCOME: [RGBColor; 6] = OUTCOME_COLOURS;
+
+/// The outcomes whose colour's shades the palette holds: those of a passive lander (the
+/// palette, and so every GIF, stays as it was before `held`); a `held` caption takes the
+/// nearest entry, a purple of the colour cube.
+const PALETTE_OUTCOMES: usize = 5;
 /// X_I, Y_I, Z_I of the axis triad.
 pub(super) const AXES: [RGBColor; 3] = [
     RGBColor(214, 39, 40),
@@ -77,7 +82,7 @@ impl Palette {
         };
         for ink in [TRAIL, FORCE, PLUME, STRUT, FOOTPAD]
             .into_iter()
-            .chain(OUTCOME)
+            .chain(OUTCOME.into_iter().take(PALETTE_OUTCOMES))
             .chain(AXES)
         {
             colours.extend((1..=6).map(|l| blend(ink, l as f64 / 6.0)));

@@ -115,7 +115,9 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         done.steps as f64 / rows as f64,
         done.stats.occupancy(),
     );
-    for (o, c) in Outcome::ALL.iter().zip(done.counts) {
+    // `held` is listed where a lander can be held: with a control loop.
+    let controlled = plan.scenario.control.is_some();
+    for (o, c) in Outcome::listed(controlled).map(|o| (o, done.counts[o as usize])) {
         t.push_str(&format!(
             "  {:<10} {c:>10}  {:>6.2} %\n",
             o.name(),

@@ -3,7 +3,9 @@
 //! gets until its next event. The kernels' lanes and the scalar reference both run it.
 
 use super::allocation::{Wrench, quantise_carrying};
-use super::laws::{DescentDraw, LAW_MEMORY, LawCommand, attitude_torque, descent_force};
+use super::laws::{
+    DescentDraw, LAW_MEMORY, LawCommand, attitude_torque, descent_force, tilted_past,
+};
 use super::model::ControlModel;
 use super::sensors::{Sensed, Truth};
 use super::thrust::Thrust;
@@ -460,12 +462,15 @@ impl LaneControl {
                 && sensed.rate_rad_s.length() < m.rest_rate_rad_s;
             let rest_s = if at_rest { rest_s + m.period_s } else { 0.0 };
             let until_rest = c.hold_down.is_some_and(|h| h.until_rest);
+            let tilted = c.hold_down.and_then(|h| h.stop_tilt_deg);
+            let tilted = tilted.is_some_and(|limit| tilted_past(&sensed, truth.normal, limit));
             // Periods are counted from the instant contact was sensed: `duration` asks for
             // that many periods' worth (the last one whole).
             let periods = (self.summary.hold_down_duration_s / m.period_s - 1e-9).ceil();
             let done_s = since_s + periods * m.period_s;
             self.phase = if t >= done_s - 0.5 * m.period_s
                 || (until_rest && rest_s >= m.hold_time_s - 1e-9)
+                || tilted
             {
                 Phase::Done
             } else {

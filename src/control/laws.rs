@@ -5,6 +5,14 @@ use super::allocation::Wrench;
 use super::sensors::Sensed;
 use glam::{DQuat, DVec3};
 
+/// Whether the sensed tilt of `Z_B` from the surface normal `normal` exceeds `limit_deg`:
+/// where `hold_down` with `stop_tilt_deg` stops pushing (a lander far over along the slope
+/// is pushed further down it, not onto it).
+#[must_use]
+pub fn tilted_past(sensed: &Sensed, normal: DVec3, limit_deg: f64) -> bool {
+    (sensed.attitude * DVec3::Z).dot(normal) < libm::cos(limit_deg.to_radians())
+}
+
 /// Numbers a law keeps per lander from one control instant to the next (`Law::command`).
 pub const LAW_MEMORY: usize = 8;
 

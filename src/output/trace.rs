@@ -24,8 +24,10 @@ const BATCH_ROWS: usize = 8192;
 /// A column: name, unit, description.
 type Column = (String, &'static str, String);
 
-/// Columns of the body, then 7 columns per leg.
-fn columns(legs: usize) -> Vec<Column> {
+/// Columns of the body, then 7 columns per leg. With a control loop (`controlled`) the
+/// accelerometer's column says that thrust is in it (a passive trace's says what it said
+/// before there was thrust).
+fn columns(legs: usize, controlled: bool) -> Vec<Column> {
     let mut c: Vec<Column> = [
         ("t_s", "s", "time at the start of the step"),
         ("dt_s", "s", "length of the step"),
@@ -45,7 +47,12 @@ fn columns(legs: usize) -> Vec<Column> {
         (
             "accel_z_body_m_s2",
             "m/s^2",
-            "contact acceleration along Z_B (what an accelerometer on the body axis reads)",
+            if controlled {
+                "specific force over the mass along Z_B: contact and thrust, not gravity (what \
+                 an accelerometer on the body axis reads)"
+            } else {
+                "contact acceleration along Z_B (what an accelerometer on the body axis reads)"
+            },
         ),
         ("qw", "1", "attitude quaternion body to I, scalar part"),
         ("qx", "1", "attitude quaternion, x"),
@@ -255,7 +262,8 @@ impl Rows {
 fn row(model: &Model, r: &StepReport, out: &mut Vec<f64>) {
     out.clear();
     let b = &r.body;
-    let acc = r.force_n / model.mass_kg;
+    // The specific force per unit mass (contact and thrust): dv/dt less gravity.
+    let acc = r.specific_force_n() / model.mass_kg;
     let z_body = DMat3::from_quat(b.attitude).z_axis;
     let (yaw, pitch, roll) = b.attitude.to_euler(EulerRot::ZYX);
     let rate = b.rate_rad_s * (1.0f64).to_degrees();
@@ -412,7 +420,7 @@ pub fn control_values(
 /// state at the start of each, and last the state at the decision. Returns the number of
 /// rows written.
 pub fn write(path: &Path, model: &Model, info: &TraceInfo<'_>, every: u64) -> anyhow::Result<u64> {
-    let mut fields: Vec<_> = columns(model.legs.len())
+    let mut fields: Vec<_> = columns(model.legs.len(), model.control.is_some())
         .iter()
         .map(|(n, u, d)| field(n, DataType::Float64, u, d))
         .collect();

@@ -16,13 +16,14 @@ pub(crate) const FONT: &str = "sans-serif";
 pub(crate) type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
 
 /// Colours of the outcomes, in the order of `Outcome::ALL` (stable, tipped, sliding,
-/// bouncing, diverged): green, red, orange, blue, black.
-pub(crate) const OUTCOME_COLOURS: [RGBColor; 5] = [
+/// bouncing, diverged, held): green, red, orange, blue, black, purple.
+pub(crate) const OUTCOME_COLOURS: [RGBColor; 6] = [
     RGBColor(44, 160, 44),
     RGBColor(214, 39, 40),
     RGBColor(255, 127, 14),
     RGBColor(31, 119, 180),
     RGBColor(0, 0, 0),
+    RGBColor(148, 103, 189),
 ];
 
 /// Line colours of the series of one panel (x, y, z; or legs 0, 1, ...).

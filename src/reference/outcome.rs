@@ -16,7 +16,9 @@
 //!   footpad in contact sticking: its friction anchor within `REST_SLIP_M` (1 micrometre)
 //!   of where it was after the first step of the rest;
 //! - at `t_max`: `stable` if at rest since before the last step (its footpads seen to
-//!   stick), else `sliding` if a leg touches the surface, else `bouncing`;
+//!   stick), else, if a leg touches the surface, `held` while the control loop is still
+//!   powered (it may fire: the rest and slide rules do not apply) and `sliding` otherwise,
+//!   else `bouncing`;
 //! - with `early_sliding`, `sliding` before `t_max` in a steady slide down a plane steeper
 //!   than the friction angle: every footpad slipping, the CG moving down, the body rate
 //!   apart from its spin about the normal below the rest rate, the normal forces summing
@@ -54,17 +56,31 @@ pub enum Outcome {
     /// A non-finite or exploding state: a defect of the model or its parameters, reported,
     /// never dropped.
     Diverged,
+    /// In contact at `t_max` with its control loop still powered (it may fire): held on
+    /// the surface by thrust, or left undecided by it; what it does once the loop stops is
+    /// not known. Only landers with a control loop end so.
+    Held,
 }
 
 impl Outcome {
-    /// All outcomes, in code order.
-    pub const ALL: [Outcome; 5] = [
+    /// All outcomes, in code order (`held`, the latest, last: the codes of the others
+    /// stay those of files written before it).
+    pub const ALL: [Outcome; 6] = [
         Outcome::Stable,
         Outcome::Tipped,
         Outcome::Sliding,
         Outcome::Bouncing,
         Outcome::Diverged,
+        Outcome::Held,
     ];
+
+    /// The outcomes a table of a sweep lists: all but `held` for a sweep without a control
+    /// loop (`controlled` false), whose landers cannot end `held`.
+    pub fn listed(controlled: bool) -> impl Iterator<Item = Outcome> {
+        Outcome::ALL
+            .into_iter()
+            .filter(move |o| controlled || *o != Outcome::Held)
+    }
 
     /// The name written to files and printed.
     #[must_use]
@@ -75,6 +91,7 @@ impl Outcome {
             Outcome::Sliding => "sliding",
             Outcome::Bouncing => "bouncing",
             Outcome::Diverged => "diverged",
+            Outcome::Held => "held",
         }
     }
 
@@ -180,7 +197,8 @@ impl Tracker {
         self.steps += 1;
         let body = &report.body;
         let rotation = glam::DMat3::from_quat(body.attitude);
-        let acceleration = report.force_n / model.mass_kg;
+        // The specific force: contact and thrust, not gravity (what an accelerometer reads).
+        let acceleration = report.specific_force_n() / model.mass_kg;
         self.peak_acceleration = self.peak_acceleration.max(acceleration.length());
         let z_body = rotation.z_axis;
         self.peak_acceleration_z = self.peak_acceleration_z.max(acceleration.dot(z_body).abs());
@@ -285,6 +303,8 @@ impl Tracker {
             // every other step).
             return Some(if at_rest && in_rest {
                 Outcome::Stable
+            } else if contacts > 0 && !passive {
+                Outcome::Held
             } else if contacts > 0 {
                 Outcome::Sliding
             } else {

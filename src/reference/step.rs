@@ -74,6 +74,18 @@ pub struct StepReport {
 }
 
 impl StepReport {
+    /// The specific force on the lander during the step, in I, N: the contact forces plus
+    /// the thrust, without gravity (what an accelerometer at the CG reads, times the
+    /// mass). `dv/dt` is this over the mass plus gravity.
+    #[must_use]
+    pub fn specific_force_n(&self) -> DVec3 {
+        if self.thrust.force_b_n == DVec3::ZERO {
+            // A passive lander (and a thruster-less segment): the contact forces alone.
+            return self.force_n;
+        }
+        self.force_n + DMat3::from_quat(self.body.attitude) * self.thrust.force_b_n
+    }
+
     /// An empty report for `legs` legs.
     #[must_use]
     pub fn new(legs: usize) -> StepReport {

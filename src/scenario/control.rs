@@ -92,6 +92,15 @@ table! {
         /// Whether it stops sooner, at the first instant at which the sensed speed and rate
         /// have stayed below the rest thresholds (`[outcome]`) for `outcome.hold_time_s`.
         until_rest: bool = r.or(key, false).bool(key)?,
+        /// Whether it stops sooner, at the first instant at which the sensed tilt of `Z_B`
+        /// from the surface normal exceeds this, deg (absent: it pushes at any tilt).
+        stop_tilt_deg: Option<f64> = r.given(key, |r| {
+            r.f64_where(
+                key,
+                "a tilt greater than 0 and less than 90 deg (past 90 deg the lander has tipped)",
+                |x| x > 0.0 && x < 90.0,
+            )
+        })?,
     }
 }
 

@@ -35,7 +35,7 @@ REQUIRED_METADATA = (
     "touchdown.scenario",
     "touchdown.samples",
 )
-OUTCOMES = ("stable", "tipped", "sliding", "bouncing", "diverged")
+OUTCOMES = ("stable", "tipped", "sliding", "bouncing", "diverged", "held")
 INPUTS = (
     "slope_deg",
     "downhill_azimuth_deg",

@@ -28,7 +28,7 @@ REQUIRED_METADATA = (
     "touchdown.scenario",
     "touchdown.outcome",
 )
-OUTCOMES = {"stable", "tipped", "sliding", "bouncing", "diverged"}
+OUTCOMES = {"stable", "tipped", "sliding", "bouncing", "diverged", "held"}
 LEG_COLUMNS = (
     "tip_x_m",
     "tip_y_m",

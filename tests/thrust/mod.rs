@@ -15,11 +15,14 @@ use touchdown::reference::{Model, State, StepReport, initial_state};
 use touchdown::scenario::{Inputs, Scenario};
 use touchdown::slope::Surface;
 
+mod accelerations;
 mod attitude;
 mod descent;
 mod free_flight;
+mod held;
 mod hold_down;
 mod propellant;
+mod stop_tilt;
 mod switches;
 mod tipping;
 

@@ -183,7 +183,7 @@ pub const SHARD_KEYS: [&str; 2] = ["touchdown.shard", "touchdown.sample_range"];
 pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
     let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);
     let mut fields = input_fields();
-    fields.extend(result_fields());
+    fields.extend(result_fields(!info.control.is_empty()));
     fields.extend(leg_fields(legs));
     for (name, unit, description, _) in CONTROL_COLUMNS {
         if info.control.contains(&name) {
@@ -248,21 +248,31 @@ fn input_fields() -> Vec<Field> {
     fields
 }
 
-/// The fields of a sample's results, up to the legs.
-fn result_fields() -> Vec<Field> {
+/// The fields of a sample's results, up to the legs. With a control loop (`controlled`),
+/// a lander may end `held`, and thrust adds to the accelerometer's reading; the
+/// descriptions of a passive sweep say what they said before there was either.
+fn result_fields(controlled: bool) -> Vec<Field> {
     let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);
+    let pick =
+        |passive: &'static str, thrust: &'static str| if controlled { thrust } else { passive };
     vec![
         f(
             "outcome",
             DataType::Utf8,
             "1",
-            "stable, tipped, sliding, bouncing or diverged",
+            pick(
+                "stable, tipped, sliding, bouncing or diverged",
+                "stable, tipped, sliding, bouncing, diverged or held",
+            ),
         ),
         f(
             "decided_s",
             DataType::Float64,
             "s",
-            "time the outcome was decided (t_max for sliding and bouncing)",
+            pick(
+                "time the outcome was decided (t_max for sliding and bouncing)",
+                "time the outcome was decided (t_max for sliding, bouncing and held)",
+            ),
         ),
         f("steps", DataType::UInt64, "1", "steps taken"),
         f(
@@ -287,13 +297,21 @@ fn result_fields() -> Vec<Field> {
             "peak_acceleration_m_s2",
             DataType::Float64,
             "m/s^2",
-            "peak contact acceleration of the CG (accelerometer reading)",
+            pick(
+                "peak contact acceleration of the CG (accelerometer reading)",
+                "peak specific force of the CG over the mass: contact and thrust, not gravity \
+                 (accelerometer reading)",
+            ),
         ),
         f(
             "peak_acceleration_z_body_m_s2",
             DataType::Float64,
             "m/s^2",
-            "peak contact acceleration along Z_B (instruments' shock)",
+            pick(
+                "peak contact acceleration along Z_B (instruments' shock)",
+                "peak specific force over the mass along Z_B: contact and thrust (instruments' \
+                 shock)",
+            ),
         ),
         f(
             "bounces",

@@ -153,12 +153,14 @@ fn shock_picture(root: &Area<'_>, tr: &Series) -> anyhow::Result<()> {
         )
         .map_err(drawing)?;
     let p = root.split_evenly((2, 1));
-    let line = tr.line(
-        "accel_z_body_m_s2",
-        "contact acceleration along Z_B",
-        0,
-        1.0,
-    )?;
+    // With thrusters the accelerometer reads the thrust too (a passive trace's label as
+    // before: there it is the contact alone).
+    let label = if tr.trace.thrusters > 0 {
+        "specific force over the mass along Z_B (contact and thrust)"
+    } else {
+        "contact acceleration along Z_B"
+    };
+    let line = tr.line("accel_z_body_m_s2", label, 0, 1.0)?;
     let peak =
         line.points.iter().copied().fold(
             (0.0, 0.0),
