@@ -36,7 +36,7 @@ const THRUST: [&str; 3] = ["thrust_b_x_n", "thrust_b_y_n", "thrust_b_z_n"];
 
 #[test]
 fn trace_acceleration_is_dv_dt_with_thrust() {
-    // Samples 0-2 of hold-down.toml: attitude hold through a stepped fall, then 0-40 N of
+    // Samples 0-2 of hold-down.toml: attitude hold through a stepped fall, then 20 N of
     // hold-down for 10 s. Every step's row holds the velocity at its start and the
     // acceleration during it, so (v[i+1] - v[i]) / dt[i] is a[i] but for rounding: the
     // integrator adds the contact kick, gravity and the thrust to v in three roundings of
@@ -51,7 +51,16 @@ fn trace_acceleration_is_dv_dt_with_thrust() {
     // few roundings of |a| (1e-12 relative, or of 1e-12 m/s^2 absolute); and where no
     // leg touches, the thrust alone: thrust_b_z / m.
     let dir = TempDir::new("trace_acceleration_is_dv_dt_with_thrust");
-    let text = shipped("hold-down");
+    // The hold-down fixed at 20 N, so that the net thrust is large in every sample (the
+    // attitude hold's couples give none, and a drawn thrust of 0.1 N fires once in 3 s).
+    let text = shipped("hold-down").replace(
+        "thrust_n = { dist = \"uniform\", min = 0.0, max = 40.0 }",
+        "thrust_n = 20.0",
+    );
+    assert!(
+        text.contains("thrust_n = 20.0"),
+        "the hold-down's thrust is set"
+    );
     let scenario = Scenario::from_toml(&text).unwrap();
     let (mass, g0) = (scenario.lander.mass_kg, scenario.gravity_m_s2);
     let file = dir.write("hold-down.toml", &text);
