@@ -93,6 +93,39 @@ fn a_sweep_whose_landers_never_touch_says_so() {
             && !run.stderr.contains("release too high"),
         "{run}"
     );
+    // A descent braked on its profile from 15 m needs over a minute (scenarios/descent.toml
+    // releases after 17-43 s and falls for 24-35 s more); cut to 40 s, the landers are
+    // still in the powered descent at the end, or released and still falling: those in
+    // the descent are told apart and pointed at the descent's keys (the run's reach
+    // check, unbraked, lets it run).
+    let descent = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/descent.toml"),
+    )
+    .unwrap()
+    .replace("t_max_s = 150.0", "t_max_s = 40.0");
+    dir.write("descent.toml", &descent);
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--scenario",
+            "descent.toml",
+            "--samples",
+            "16",
+            "--out",
+            "descent.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(
+        run.stderr
+            .contains("16 of the 16 samples run never touched the surface")
+            && run
+                .stderr
+                .contains("still in the powered descent at the end (bouncing), never released")
+            && run.stderr.contains("control.descent.braking_m_s2"),
+        "{run}"
+    );
     // Landers that all touch: no warning.
     dir.write("s.toml", SHORT);
     let run = touchdown(

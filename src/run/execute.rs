@@ -41,6 +41,8 @@ pub struct Executed {
     pub untouched: u64,
     /// Of those, the samples that tipped in flight (turned past 90 deg before touching).
     pub untouched_tipped: u64,
+    /// Of those, the samples still in their powered descent at the end (never released).
+    pub untouched_descending: u64,
 }
 
 /// Runs `plan` and writes its file. A signal (`run.stop`) ends it with an `Interrupted`
@@ -84,6 +86,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     let mut computed = 0u64;
     let mut untouched = 0u64;
     let mut untouched_tipped = 0u64;
+    let mut untouched_descending = 0u64;
     let ran = run.pool.install(|| {
         crate::sweep::run_until(
             scenario,
@@ -99,6 +102,13 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
                     let never = r.summary.first_contact_s.is_none();
                     untouched += u64::from(never);
                     untouched_tipped += u64::from(never && r.summary.outcome == Outcome::Tipped);
+                    let descending = r
+                        .summary
+                        .control
+                        .as_ref()
+                        .is_some_and(|c| c.descent.is_some() && c.release_time_s.is_nan());
+                    untouched_descending +=
+                        u64::from(never && descending && r.summary.outcome != Outcome::Tipped);
                 }
                 computed += rows.len() as u64;
                 eta.done(computed);
@@ -122,6 +132,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         steps,
         untouched,
         untouched_tipped,
+        untouched_descending,
     })
 }
 
@@ -263,8 +274,18 @@ pub fn warn_untouched(done: &Executed, scenario: &Scenario, at: &str) {
         return;
     }
     let tipped = done.untouched_tipped;
-    let flying = done.untouched - tipped;
+    let descending = done.untouched_descending;
+    let flying = done.untouched - tipped - descending;
     let mut why = Vec::new();
+    if descending > 0 {
+        why.push(format!(
+            "{descending} still in the powered descent at the end (bouncing), never released: \
+             a descent too long for the run? Braking on its profile from \
+             control.descent.start_altitude_m to inputs.release_height_m at \
+             control.descent.braking_m_s2 takes about sqrt(2 (start - release) / braking); \
+             see also control.descent.release_speed_m_s against the velocity sensor's noise"
+        ));
+    }
     if flying > 0 {
         why.push(format!(
             "{flying} still in flight at the end (bouncing): a release too high or an upward \
