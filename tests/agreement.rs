@@ -211,10 +211,27 @@ fn check_close(
     }
     let mut contact_drift = false;
     match (r.first_contact_s, k.first_contact_s, contact_within) {
-        (Some(a), Some(b), Some(within)) => assert!(
-            (a - b).abs() <= within,
-            "{name} sample {i}: first contact {a} vs {b}"
-        ),
+        (Some(a), Some(b), Some(within)) => {
+            assert!(
+                (a - b).abs() <= within,
+                "{name} sample {i}: first contact {a} vs {b}"
+            );
+            // The touchdown state is the state at the start of that step: one step apart
+            // at most, over which gravity (0.0168 m/s^2) changes the speeds by 0.0168
+            // `within`, and the body rates (at most a few deg/s) the tilt by a few
+            // `within` deg; the rates change only by the gyroscopic term. 1e-5 (m/s,
+            // deg/s) and 1e-3 deg above that cover f32 lanes' rounding. The first leg is
+            // not compared: an upright lander on level ground touches with four at once.
+            let (a, b) = (r.touchdown.unwrap(), k.touchdown.unwrap());
+            let speeds = 0.0168 * within + 1e-5;
+            assert!(
+                (a.normal_speed_m_s - b.normal_speed_m_s).abs() <= speeds
+                    && (a.tangential_speed_m_s - b.tangential_speed_m_s).abs() <= speeds
+                    && (a.tilt_deg - b.tilt_deg).abs() <= 5.0 * within + 1e-3
+                    && (0..3).all(|j| (a.rate_deg_s[j] - b.rate_deg_s[j]).abs() <= 1e-3),
+                "{name} sample {i}: touchdown state {a:?} vs {b:?}"
+            );
+        }
         (Some(a), Some(b), None) => contact_drift = (a - b).abs() > 0.01,
         (a, b, _) => assert_eq!(a, b, "{name} sample {i}: first contact"),
     }

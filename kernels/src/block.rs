@@ -78,6 +78,14 @@ pub struct Track<L: Lane> {
     pub touched: L::Mask,
     /// Time of first contact, NaN until then.
     pub first_contact_s: L,
+    /// At the start of the first contact's step (read once `first_contact_s` is set): the
+    /// CG velocity, the body rates, `X_B` and `Z_B`, and the deepest leg (the reference's
+    /// `touchdown::Met`).
+    pub met_velocity_m_s: Vec3<L>,
+    pub met_rate_rad_s: Vec3<L>,
+    pub met_x_body: Vec3<L>,
+    pub met_z_body: Vec3<L>,
+    pub met_leg: L,
     pub max_penetration: L,
     pub steps: L,
     /// Outcome code once decided (see `outcome`), -1 before.
@@ -241,6 +249,11 @@ impl<L: Lane> Block<L> {
                 bounces: zero,
                 touched: all_false::<L>(),
                 first_contact_s: lane(f64::NAN),
+                met_velocity_m_s: Vec3::ZERO,
+                met_rate_rad_s: Vec3::ZERO,
+                met_x_body: Vec3::ZERO,
+                met_z_body: Vec3::ZERO,
+                met_leg: zero,
                 max_penetration: zero,
                 steps: zero,
                 outcome: lane(-1.0),

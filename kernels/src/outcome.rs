@@ -144,6 +144,22 @@ pub fn observe<L: Lane, const DAMPERS: bool, const THRUST: bool>(
     if THRUST {
         block.thrust.touched |= touching;
     }
+    // The state at the start of the first contact's step, and its deepest leg.
+    let first = touching & t.first_contact_s.is_nan();
+    if first.to_bitmask() != 0 {
+        let (mut leg, mut deepest) = (zero, L::splat(f64::NEG_INFINITY));
+        for (k, step) in block.leg_step.iter().enumerate() {
+            let deeper = step.penetration_m.simd_gt(deepest);
+            leg = deeper.select(L::splat(k as f64), leg);
+            deepest = deeper.select(step.penetration_m, deepest);
+        }
+        let r = &block.start_rotation;
+        t.met_velocity_m_s = Vec3::select(first, block.start_velocity_m_s, t.met_velocity_m_s);
+        t.met_rate_rad_s = Vec3::select(first, block.start_rate_rad_s, t.met_rate_rad_s);
+        t.met_x_body = Vec3::select(first, r.x_axis, t.met_x_body);
+        t.met_z_body = Vec3::select(first, r.z_axis, t.met_z_body);
+        t.met_leg = first.select(leg, t.met_leg);
+    }
     t.first_contact_s =
         (touching & t.first_contact_s.is_nan()).select(block.start_t_s, t.first_contact_s);
     let lifted = !touching & t.touched & (-deepest).simd_gt(p.bounce_clearance_m);

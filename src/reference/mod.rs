@@ -2,7 +2,8 @@
 //! MODEL.md. It drives `touchdown trace` and is the oracle the SIMD kernels must agree with.
 //!
 //! Files mirror the kernels: `rigid_body`, `contact`, `honeycomb`, `step`, `outcome`;
-//! `model` holds the parameters and `run` one whole sample.
+//! `model` holds the parameters, `run` one whole sample, and `touchdown` the state in which
+//! a sample met the surface.
 
 pub mod contact;
 pub mod honeycomb;
@@ -11,6 +12,7 @@ pub mod outcome;
 pub mod rigid_body;
 pub mod run;
 pub mod step;
+pub mod touchdown;
 
 pub use model::Model;
 pub use outcome::{Outcome, Summary};

@@ -34,6 +34,7 @@
 
 use super::model::Model;
 use super::step::{State, StepReport};
+use super::touchdown::{Met, Touchdown};
 use crate::slope::Surface;
 use glam::{DMat3, DVec3};
 use kernels::outcome::{
@@ -137,6 +138,8 @@ pub struct Summary {
     pub bounces: u32,
     /// Time of the first contact, s (None if it never touched).
     pub first_contact_s: Option<f64>,
+    /// The state in which it met the surface (None if it never touched).
+    pub touchdown: Option<Touchdown>,
     /// Deepest penetration of a footpad below the local surface (0 if it never touched), m.
     pub max_penetration_m: f64,
     /// Per-leg results, in the order of `Model::legs`.
@@ -159,6 +162,8 @@ pub struct Tracker {
     bounces: u32,
     touched_since_lift_off: bool,
     first_contact_s: Option<f64>,
+    /// The state at the first contact.
+    met: Option<Met>,
     max_penetration: f64,
     peak_normal: Vec<f64>,
     steps: u64,
@@ -178,6 +183,7 @@ impl Tracker {
             bounces: 0,
             touched_since_lift_off: false,
             first_contact_s: None,
+            met: None,
             max_penetration: 0.0,
             peak_normal: vec![0.0; model.legs.len()],
             steps: 0,
@@ -223,6 +229,9 @@ impl Tracker {
             });
         self.max_penetration = self.max_penetration.max(deepest);
         if contacts > 0 {
+            if self.first_contact_s.is_none() {
+                self.met = Some(met(report));
+            }
             self.first_contact_s.get_or_insert(report.t_s);
             self.touched_since_lift_off = true;
         } else if self.touched_since_lift_off && -deepest > th.bounce_clearance_m {
@@ -346,6 +355,9 @@ impl Tracker {
             peak_acceleration_z_body_m_s2: finite_or_zero(self.peak_acceleration_z),
             bounces: self.bounces,
             first_contact_s: self.first_contact_s,
+            touchdown: self
+                .met
+                .map(|m| Touchdown::of(&m, surface.normal, surface.tangent_u, surface.tangent_v)),
             max_penetration_m: finite_or_zero(self.max_penetration),
             legs: self
                 .peak_normal
@@ -359,6 +371,26 @@ impl Tracker {
                 .collect(),
             control: None,
         }
+    }
+}
+
+/// The state at the start of the step `report` (its first contact), and its deepest leg
+/// (the lowest index on a tie, as the kernels pick it).
+fn met(report: &StepReport) -> Met {
+    let (mut first_leg, mut deepest) = (0, f64::NEG_INFINITY);
+    for (k, leg) in report.legs.iter().enumerate() {
+        if leg.penetration_m > deepest {
+            (first_leg, deepest) = (k, leg.penetration_m);
+        }
+    }
+    let b = &report.body;
+    let rotation = DMat3::from_quat(b.attitude);
+    Met {
+        velocity_m_s: b.velocity_m_s,
+        rate_rad_s: b.rate_rad_s,
+        x_body: rotation.x_axis,
+        z_body: rotation.z_axis,
+        first_leg,
     }
 }
 

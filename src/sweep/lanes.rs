@@ -4,6 +4,7 @@
 
 use crate::control::{Thrust, Truth};
 use crate::reference::outcome::{LegSummary, Outcome, Summary};
+use crate::reference::touchdown::{Met, Touchdown};
 use crate::reference::{Model, initial_state};
 use crate::scenario::Sample;
 use crate::slope::Surface;
@@ -125,6 +126,18 @@ pub(super) fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
         peak_acceleration_z_body_m_s2: finite_or_zero(at(&t.peak_acceleration_z)),
         bounces: at(&t.bounces) as u32,
         first_contact_s: (!first.is_nan()).then_some(first),
+        touchdown: (!first.is_nan()).then(|| {
+            let v3 = |v: &Vec3<L>| DVec3::from_array(v.lane(i));
+            let met = Met {
+                velocity_m_s: v3(&t.met_velocity_m_s),
+                rate_rad_s: v3(&t.met_rate_rad_s),
+                x_body: v3(&t.met_x_body),
+                z_body: v3(&t.met_z_body),
+                first_leg: at(&t.met_leg) as usize,
+            };
+            let s = &block.surface;
+            Touchdown::of(&met, normal, v3(&s.tangent_u), v3(&s.tangent_v))
+        }),
         max_penetration_m: finite_or_zero(at(&t.max_penetration)),
         legs: block
             .legs

@@ -19,6 +19,7 @@ mod outcome;
 mod restitution;
 mod sliding;
 mod tipping;
+mod touchdown_state;
 
 // ---------------------------------------------------------------------------------------
 // Helpers: inputs, scenarios, a step driver and the results table.

@@ -39,6 +39,40 @@ pub fn control_value(name: &str) -> Option<fn(&ControlSummary) -> f64> {
     };
     Some(get)
 }
+/// The columns of `TOUCHDOWN_COLUMNS` (null where a lander never touched, and the
+/// azimuths where its speed along the surface was 0), into `cols`.
+fn touchdown_columns(rows: &[Row], cols: &mut Vec<ArrayRef>) {
+    use crate::reference::touchdown::Touchdown;
+    let values: [fn(&Touchdown) -> f64; 8] = [
+        |t| t.normal_speed_m_s,
+        |t| t.tangential_speed_m_s,
+        |t| t.tangential_azimuth_deg,
+        |t| t.tangential_azimuth_body_deg,
+        |t| t.tilt_deg,
+        |t| t.rate_deg_s[0],
+        |t| t.rate_deg_s[1],
+        |t| t.rate_deg_s[2],
+    ];
+    for value in values {
+        let mut b = Float64Builder::with_capacity(rows.len());
+        for r in rows {
+            b.append_option(
+                r.summary
+                    .touchdown
+                    .as_ref()
+                    .map(value)
+                    .filter(|x| !x.is_nan()),
+            );
+        }
+        cols.push(Arc::new(b.finish()));
+    }
+    let mut leg = UInt32Builder::with_capacity(rows.len());
+    for r in rows {
+        leg.append_option(r.summary.touchdown.map(|t| t.first_leg));
+    }
+    cols.push(Arc::new(leg.finish()));
+}
+
 /// A record batch of `rows` in `schema`, the columns passed through from a table of
 /// inputs (`kept`, last in the schema) as they are.
 pub fn batch(
@@ -87,6 +121,7 @@ pub fn batch(
         .for_each(|r| first.append_option(r.summary.first_contact_s));
     cols.push(Arc::new(first.finish()));
     cols.push(f64s(&|r| r.summary.max_penetration_m));
+    touchdown_columns(rows, &mut cols);
     for k in 0..legs {
         cols.push(f64s(&|r| r.summary.legs[k].peak_normal_force_n));
         cols.push(f64s(&|r| r.summary.legs[k].stroke_m));

@@ -337,6 +337,72 @@ fn result_fields(controlled: bool) -> Vec<Field> {
             "largest footpad penetration",
         ),
     ]
+    .into_iter()
+    .chain(touchdown_fields())
+    .collect()
+}
+
+/// The state in which the lander met the surface (`reference::touchdown`), at the start of
+/// the first contact's step, in the surface plane's frame: nullable (null: never touched,
+/// and the azimuths where the speed along the surface is 0).
+pub const TOUCHDOWN_COLUMNS: [(&str, &str, &str); 9] = [
+    (
+        "touchdown_normal_speed_m_s",
+        "m/s",
+        "speed towards the surface at the first contact, -n . v (null: never touched)",
+    ),
+    (
+        "touchdown_tangential_speed_m_s",
+        "m/s",
+        "speed along the surface at the first contact",
+    ),
+    (
+        "touchdown_tangential_azimuth_deg",
+        "deg",
+        "direction of the velocity along the surface at the first contact, from downhill, \
+         positive towards n x downhill (null where that speed is 0)",
+    ),
+    (
+        "touchdown_tangential_azimuth_body_deg",
+        "deg",
+        "the same from X_B projected on the surface (relative to the legs)",
+    ),
+    (
+        "touchdown_tilt_deg",
+        "deg",
+        "tilt of Z_B from the surface normal at the first contact",
+    ),
+    (
+        "touchdown_rate_x_deg_s",
+        "deg/s",
+        "body rate about X_B at the first contact",
+    ),
+    (
+        "touchdown_rate_y_deg_s",
+        "deg/s",
+        "body rate about Y_B at the first contact",
+    ),
+    (
+        "touchdown_rate_z_deg_s",
+        "deg/s",
+        "body rate about Z_B at the first contact",
+    ),
+    (
+        "touchdown_first_leg",
+        "1",
+        "the leg that touched first (the deepest on the first contact's step)",
+    ),
+];
+
+fn touchdown_fields() -> impl Iterator<Item = Field> {
+    TOUCHDOWN_COLUMNS.iter().map(|&(name, unit, description)| {
+        let t = if name == "touchdown_first_leg" {
+            DataType::UInt32
+        } else {
+            DataType::Float64
+        };
+        field(name, t, unit, description).with_nullable(true)
+    })
 }
 
 /// The fields of each leg's results.
