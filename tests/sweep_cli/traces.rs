@@ -158,3 +158,104 @@ fn rows_hold_the_inputs_and_outcomes_of_their_traces() {
         check_rows_against_traces(&dir, &["--sweep", &out], seed, &file);
     }
 }
+
+#[test]
+fn touchdown_state_columns_are_the_traces_first_contact() {
+    // The sweep's touchdown-state columns (the kernels) against the trace of the same
+    // sample (the reference, every step): the first row whose footpads touch holds the
+    // state at the start of the first contact's step, from which the speeds towards and
+    // along the surface (whose normal n and downhill u the sample's slope and azimuth
+    // give), the tilt and the rates follow. Kernel and reference may place that step one
+    // step (1 ms) apart: the speeds agree within gravity over it, 0.0168 x 1e-3 m/s, and
+    // rounding (1e-5 m/s), the tilt within 5e-3 deg, the rates within 1e-3 deg/s. Every
+    // sample of the default sweep touches, so no column is null.
+    let dir = TempDir::new("touchdown-state-vs-trace");
+    let samples = 6;
+    let (_, _) = sweep(&dir, &["--samples", "6", "--out", "s.arrow"]);
+    let file = read_sweep(&dir.join("s.arrow"));
+    let column = |name: &str| file.f64s(name);
+    let (normal, along, tilt) = (
+        column("touchdown_normal_speed_m_s"),
+        column("touchdown_tangential_speed_m_s"),
+        column("touchdown_tilt_deg"),
+    );
+    let rates = ["x", "y", "z"].map(|a| column(&format!("touchdown_rate_{a}_deg_s")));
+    for i in 0..samples {
+        let out = format!("t{i}.arrow");
+        touchdown(
+            dir.path(),
+            &[
+                "trace",
+                "--sweep",
+                "s.arrow",
+                "--sample",
+                &i.to_string(),
+                "--out",
+                &out,
+            ],
+        )
+        .assert_ok();
+        let t = read_sweep(&dir.join(&out));
+        let input = |name: &str| -> f64 {
+            t.meta(&format!("touchdown.input.{name}"))
+                .unwrap()
+                .parse()
+                .unwrap()
+        };
+        let (a, b) = (
+            input("slope_deg").to_radians(),
+            input("downhill_azimuth_deg").to_radians(),
+        );
+        let n = [a.sin() * b.cos(), a.sin() * b.sin(), a.cos()];
+        let legs: Vec<Vec<f64>> = (0..4)
+            .map(|l| t.f64s(&format!("leg{l}_penetration_m")))
+            .collect();
+        let row = (0..t.rows())
+            .find(|&r| legs.iter().any(|l| l[r] > 0.0))
+            .expect("the sample touches");
+        let v = ["vx_m_s", "vy_m_s", "vz_m_s"].map(|c| t.f64s(c)[row]);
+        let towards = -(0..3).map(|k| n[k] * v[k]).sum::<f64>();
+        let speed = (0..3).map(|k| v[k] * v[k]).sum::<f64>().sqrt();
+        let on_plane = (speed * speed - towards * towards).max(0.0).sqrt();
+        let [w, x, y, z] = ["qw", "qx", "qy", "qz"].map(|c| t.f64s(c)[row]);
+        let z_body = [
+            2.0 * (x * z + w * y),
+            2.0 * (y * z - w * x),
+            1.0 - 2.0 * (x * x + y * y),
+        ];
+        let traced_tilt = (0..3)
+            .map(|k| z_body[k] * n[k])
+            .sum::<f64>()
+            .clamp(-1.0, 1.0)
+            .acos()
+            .to_degrees();
+        let speeds = 0.0168e-3 + 1e-5;
+        let case = format!("sample {i} (trace row {row})");
+        assert!(
+            (normal[i] - towards).abs() <= speeds,
+            "{case}: towards {} vs {towards}",
+            normal[i]
+        );
+        assert!(
+            (along[i] - on_plane).abs() <= speeds,
+            "{case}: along {} vs {on_plane}",
+            along[i]
+        );
+        assert!(
+            (tilt[i] - traced_tilt).abs() <= 5e-3,
+            "{case}: tilt {} vs {traced_tilt}",
+            tilt[i]
+        );
+        for (k, c) in ["rate_x_deg_s", "rate_y_deg_s", "rate_z_deg_s"]
+            .iter()
+            .enumerate()
+        {
+            let traced = t.f64s(c)[row];
+            assert!(
+                (rates[k][i] - traced).abs() <= 1e-3,
+                "{case}: {c} {} vs {traced}",
+                rates[k][i]
+            );
+        }
+    }
+}
