@@ -140,11 +140,15 @@ pub(crate) fn line_panel(
     x_range: std::ops::Range<f64>,
     lines: &[Line],
 ) -> anyhow::Result<()> {
-    let y_range = span(
+    lines_in(area, caption, axes, x_range, y_span(lines), lines)
+}
+
+/// The y range of `lines`, padded by 5 % of it.
+fn y_span(lines: &[Line]) -> std::ops::Range<f64> {
+    span(
         lines.iter().flat_map(|l| l.points.iter().map(|p| p.1)),
         0.05,
-    );
-    lines_in(area, caption, axes, x_range, y_range, lines)
+    )
 }
 
 /// `line_panel` with its legend above the lines: the y axis reaches up by the legend's
@@ -156,10 +160,7 @@ pub(crate) fn line_panel_legend_clear(
     x_range: std::ops::Range<f64>,
     lines: &[Line],
 ) -> anyhow::Result<()> {
-    let y = span(
-        lines.iter().flat_map(|l| l.points.iter().map(|p| p.1)),
-        0.05,
-    );
+    let y = y_span(lines);
     // The plotting height: the panel less its caption (18 points: about 27 pixels with its
     // gap), the x labels (38) and the margins (2 x 8). The legend: 18 pixels a line (14-point
     // labels) and 14 of box and gap; the lines keep at least half the height.

@@ -6,6 +6,19 @@ use crate::common::Table;
 use crate::lander::on_slope;
 use touchdown::scenario::{Inputs, Scenario};
 
+/// The speed of the default lander's straight fall from release height `h` at the first
+/// contact with a slope of `slope_deg` (its lowest footpad `clearance_m` = c above it along
+/// the normal: it falls c / cos(a) more): sqrt(2 g (h + c / cos a)); and the bound on its
+/// error, g times the longest flight step (see the first test).
+fn fall_speed(s: &Scenario, h: f64, slope_deg: f64) -> (f64, f64) {
+    let (g, c) = (s.gravity_m_s2, s.initial.clearance_m);
+    let a = slope_deg.to_radians();
+    (
+        (2.0 * g * (h + c / a.cos())).sqrt(),
+        g * s.simulation.flight_step_max_s,
+    )
+}
+
 #[test]
 fn a_straight_fall_meets_the_surface_at_its_closed_form_speed() {
     // The default lander upright (attitude errors against the local vertical, none here),
@@ -22,8 +35,6 @@ fn a_straight_fall_meets_the_surface_at_its_closed_form_speed() {
     // and its azimuths are undefined (NaN: null in the sweep).
     let mut table = Table::new("touchdown state of a straight fall");
     let s = Scenario::default();
-    let (g, c) = (s.gravity_m_s2, s.initial.clearance_m);
-    let bound = g * s.simulation.flight_step_max_s;
     for slope in [0.0, 10.0, 25.0] {
         for h in [1.0, 5.0, 10.0] {
             let inputs = Inputs {
@@ -33,7 +44,7 @@ fn a_straight_fall_meets_the_surface_at_its_closed_form_speed() {
             let summary = classify(&s, inputs);
             let t = summary.touchdown.expect("it touches");
             let a = f64::to_radians(slope);
-            let speed = (2.0 * g * (h + c / a.cos())).sqrt();
+            let (speed, bound) = fall_speed(&s, h, slope);
             let case = format!("slope {slope} deg, h {h} m");
             table.close(
                 &case,
@@ -92,9 +103,8 @@ fn a_sideways_fall_meets_the_surface_across_the_slope() {
     // than that, 0.5 deg is the bound used).
     let mut table = Table::new("touchdown state of a sideways fall");
     let s = Scenario::default();
-    let (g, c) = (s.gravity_m_s2, s.initial.clearance_m);
-    let bound = g * s.simulation.flight_step_max_s;
     let (slope, h, across) = (20.0, 5.0, 0.1);
+    let (speed, bound) = fall_speed(&s, h, slope);
     for yaw in [0.0, 90.0] {
         let inputs = Inputs {
             release_height_m: h,
@@ -104,7 +114,6 @@ fn a_sideways_fall_meets_the_surface_across_the_slope() {
         };
         let t = classify(&s, inputs).touchdown.expect("it touches");
         let a = f64::to_radians(slope);
-        let speed = (2.0 * g * (h + c / a.cos())).sqrt();
         let azimuth = across.atan2(speed * a.sin()).to_degrees();
         let case = format!("yaw {yaw} deg");
         table.close(
