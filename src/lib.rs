@@ -34,6 +34,7 @@ pub mod commands;
 pub mod compare;
 pub mod control;
 pub mod dist;
+pub mod exceedance;
 pub mod output;
 pub mod plot;
 pub mod qmc;

@@ -155,6 +155,10 @@ pub fn report(
     }
     write_allowable(&mut t, &mut sectors);
     write_loads(&mut t, &mut loads);
+    t.push_str(&crate::exceedance::markdown(&crate::exceedance::gather(
+        path,
+        dampers(meta) == Some(true),
+    )?));
     thrust.write(&mut t);
     release.write(&mut t);
     write_end(&mut t, path, meta);
@@ -278,13 +282,17 @@ fn write_loads(t: &mut String, loads: &mut [Load]) {
     }
 }
 
+/// Whether the scenario stored in the file's metadata has its dampers on (`None` where it
+/// does not read).
+fn dampers(meta: &arrow_schema::Metadata) -> Option<bool> {
+    meta.get("touchdown.scenario")
+        .and_then(|text| crate::scenario::Scenario::from_toml(text).ok())
+        .map(|s| s.damper.enabled)
+}
+
 /// The note on dampers that are off, and how to see one sample in detail.
 fn write_end(t: &mut String, path: &Path, meta: &arrow_schema::Metadata) {
-    let dampers_off = meta
-        .get("touchdown.scenario")
-        .and_then(|text| crate::scenario::Scenario::from_toml(text).ok())
-        .is_some_and(|s| !s.damper.enabled);
-    if dampers_off {
+    if dampers(meta) == Some(false) {
         let _ = writeln!(
             t,
             "\nThe dampers are off in this scenario (`damper.enabled = false`): the legs are \

@@ -31,6 +31,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "compare",
             "study",
             "boundary",
+            "exceedance",
         ],
     ),
     ("the sweep run", &["run"]),

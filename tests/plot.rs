@@ -94,7 +94,7 @@ fn plots_of_a_sweep_show_its_outcomes() {
         let run = touchdown(dir.path(), &["plot", file, "--out-dir", "pictures"]);
         run.assert_ok();
         let stem = file.split('.').next().unwrap();
-        let names = ["stability-map", "tipped-by-slope", "loads"];
+        let names = ["stability-map", "tipped-by-slope", "loads", "exceedance"];
         let expected: String = names
             .iter()
             .map(|n| {
@@ -115,7 +115,7 @@ fn plots_of_a_sweep_show_its_outcomes() {
     );
     let pictures = dir.join("pictures");
     // Both files hold the same rows: the pictures are the same, byte for byte.
-    for n in ["stability-map", "tipped-by-slope", "loads"] {
+    for n in ["stability-map", "tipped-by-slope", "loads", "exceedance"] {
         assert!(
             read_bytes(&pictures.join(format!("a-{n}.png")))
                 == read_bytes(&pictures.join(format!("p-{n}.png"))),

@@ -8,6 +8,7 @@ mod cli;
 mod collisions;
 mod common;
 mod cpus;
+mod exceedance;
 mod flown;
 mod hostile_files;
 mod inputs;

@@ -4,6 +4,7 @@
 //! no system fonts, no Python.
 
 pub(crate) mod canvas;
+mod exceedance;
 mod sensitivity;
 mod study;
 mod sweep;

@@ -26,6 +26,8 @@ struct Sweep {
     stroke_mm: Vec<f64>,
     /// Footpads in B, from the scenario in the file (none if it does not read).
     tips_m: Option<Vec<[f64; 3]>>,
+    /// Whether the scenario in the file has its dampers on.
+    dampers: bool,
     /// "N samples, seed S", for the captions.
     about: String,
 }
@@ -49,11 +51,12 @@ impl Sweep {
         let strokes: Vec<&[f64]> = (0..legs)
             .map(|k| t.column(&format!("leg{k}_stroke_m"), path))
             .collect::<anyhow::Result<_>>()?;
-        let tips_m = t
+        let scenario = t
             .meta
             .get("touchdown.scenario")
-            .and_then(|s| Scenario::from_toml(s).ok())
-            .map(|s| s.lander.tips_m());
+            .and_then(|s| Scenario::from_toml(s).ok());
+        let tips_m = scenario.as_ref().map(|s| s.lander.tips_m());
+        let dampers = scenario.is_some_and(|s| s.damper.enabled);
         Ok(Sweep {
             relative_azimuth: azimuth
                 .iter()
@@ -67,6 +70,7 @@ impl Sweep {
                 .map(|i| 1e3 * strokes.iter().map(|s| s[i]).fold(0.0, f64::max))
                 .collect(),
             tips_m,
+            dampers,
             about: format!(
                 "{} samples, seed {}",
                 t.rows,
@@ -122,6 +126,14 @@ pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
         )
     })?;
     written.push(loads);
+
+    let quantities = crate::exceedance::gather(path, s.dampers)?;
+    let exceedance = name("exceedance");
+    let rows = quantities.len().div_ceil(2) as u32;
+    save_png(&exceedance, (1200, 40 + 460 * rows), |root| {
+        super::exceedance::exceedance(root, &quantities, &s.about)
+    })?;
+    written.push(exceedance);
     Ok(written)
 }
 

@@ -1,0 +1,264 @@
+//! Load exceedance (MODEL.md section 9): over the samples of a sweep, the probability that
+//! a peak load, a stroke or the peak acceleration exceeds a value, per leg and over all
+//! legs (the largest leg of each sample), with its 95 % band; and the design value at 99 %
+//! and 99.9 % (the value exceeded by 1 % and 0.1 % of the samples) with its 95 % interval
+//! from order statistics. Unweighted: each sample counts once, as the sweep drew it.
+
+use crate::output::columns::Table;
+use crate::stats::wilson_interval;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The levels a design value is given at: the share of samples at or below it.
+pub const DESIGN_LEVELS: [f64; 2] = [0.99, 0.999];
+
+/// The two-sided confidence of the intervals.
+const CONFIDENCE: f64 = 0.95;
+
+/// One quantity's peaks over the samples: one series per leg (none for a quantity of the
+/// whole lander) and the overall series, each sorted ascending.
+pub struct Quantity {
+    /// What it is, for the report and the picture.
+    pub name: &'static str,
+    /// Its unit.
+    pub unit: &'static str,
+    /// Per leg `k`, the value of each sample, sorted.
+    pub legs: Vec<Vec<f64>>,
+    /// The value of each sample over all legs (the largest leg), sorted.
+    pub overall: Vec<f64>,
+}
+
+/// The quantities: per leg (column `leg{k}_{suffix}`, the name, the unit, and the factor to
+/// that unit) and of the whole lander.
+const PER_LEG: [(&str, &str, &str, f64); 4] = [
+    ("peak_normal_force_n", "peak leg normal force", "N", 1.0),
+    ("peak_axial_force_n", "peak axial strut load", "N", 1.0),
+    ("peak_side_force_n", "peak side strut load", "N", 1.0),
+    ("stroke_m", "damper stroke", "mm", 1e3),
+];
+const WHOLE: [(&str, &str, &str); 1] =
+    [("peak_acceleration_m_s2", "peak CG acceleration", "m/s^2")];
+
+/// The quantities of the sweep file at `path` that it has: the strut loads (files written
+/// before they existed have none), the stroke with dampers (`dampers`), the acceleration.
+pub fn gather(path: &Path, dampers: bool) -> anyhow::Result<Vec<Quantity>> {
+    let t = Table::read(path, |n| {
+        n.starts_with("leg") && PER_LEG.iter().any(|q| n.ends_with(q.0)) || n == WHOLE[0].0
+    })?;
+    let mut quantities = Vec::new();
+    for (suffix, name, unit, factor) in PER_LEG {
+        let legs = t.legs(suffix);
+        if legs == 0 || (suffix == "stroke_m" && !dampers) {
+            continue;
+        }
+        let columns: Vec<&[f64]> = (0..legs)
+            .map(|k| t.column(&format!("leg{k}_{suffix}"), path))
+            .collect::<anyhow::Result<_>>()?;
+        let overall = (0..t.rows)
+            .map(|i| factor * columns.iter().map(|c| c[i]).fold(0.0, f64::max))
+            .collect();
+        let legs = columns
+            .iter()
+            .map(|c| c.iter().map(|v| factor * v).collect())
+            .collect();
+        quantities.push(Quantity::new(name, unit, legs, overall));
+    }
+    for (column, name, unit) in WHOLE {
+        let values = t.column(column, path)?.to_vec();
+        quantities.push(Quantity::new(name, unit, Vec::new(), values));
+    }
+    Ok(quantities)
+}
+
+impl Quantity {
+    /// The quantity with its series sorted.
+    fn new(name: &'static str, unit: &'static str, legs: Vec<Vec<f64>>, overall: Vec<f64>) -> Self {
+        let sort = |mut v: Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v
+        };
+        Quantity {
+            name,
+            unit,
+            legs: legs.into_iter().map(sort).collect(),
+            overall: sort(overall),
+        }
+    }
+}
+
+/// A design value: the `level`-quantile of the samples (nearest rank, as the report's
+/// percentiles), and its interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DesignValue {
+    /// The estimate.
+    pub value: f64,
+    /// The interval's lower end: `None` where too few samples lie below it to say.
+    pub low: Option<f64>,
+    /// The upper end: `None` where too few samples lie above the quantile (more samples
+    /// are needed: at least about `3 / (1 - level)` for 99.9 %).
+    pub high: Option<f64>,
+}
+
+/// The design value at `level` of `sorted` (ascending), with its distribution-free 95 %
+/// interval `[x_(l), x_(u)]` (order statistics, 1-based): with `B` the binomial count of
+/// samples at or below the true quantile (`n` trials, probability `level`), `l` is the
+/// largest rank with `P(B < l) <= 2.5 %` and `u` the smallest with `P(B >= u) <= 2.5 %`,
+/// so that the interval covers the quantile with at least 95 % (Hahn and Meeker, 1991,
+/// section 5.2).
+#[must_use]
+pub fn design_value(sorted: &[f64], level: f64) -> Option<DesignValue> {
+    let n = sorted.len();
+    if n == 0 {
+        return None;
+    }
+    let (l, u) = order_statistic_ranks(n, level);
+    Some(DesignValue {
+        // `stats::quantile`'s nearest rank, on values already sorted.
+        value: sorted[((level * n as f64).ceil() as usize).clamp(1, n) - 1],
+        low: l.map(|r| sorted[r - 1]),
+        high: u.map(|r| sorted[r - 1]),
+    })
+}
+
+/// The ranks `(l, u)` of `design_value` (`None`: no rank satisfies the bound).
+#[must_use]
+pub fn order_statistic_ranks(n: usize, level: f64) -> (Option<usize>, Option<usize>) {
+    let tail = 0.5 * (1.0 - CONFIDENCE);
+    // P(B <= k) for k = 0..n from the log pmf (lgamma: no underflow at n = 1e6).
+    let nf = n as f64;
+    let (lp, lq) = (level.ln(), (1.0 - level).ln());
+    let lnn = libm::lgamma(nf + 1.0);
+    // Outside 40 standard deviations of the mean the pmf is below e^-800: the sum starts
+    // there, at 0 (the wide window covers the skew of a level near 1 at small n).
+    let sd = (nf * level * (1.0 - level)).sqrt();
+    let first = (nf * level - 40.0 * sd - 40.0).max(0.0) as usize;
+    let last = ((nf * level + 40.0 * sd + 40.0) as usize).min(n);
+    let mut cdf = 0.0;
+    let (mut l, mut u) = (None, None);
+    for k in first..=last {
+        let kf = k as f64;
+        let log_pmf =
+            lnn - libm::lgamma(kf + 1.0) - libm::lgamma(nf - kf + 1.0) + kf * lp + (nf - kf) * lq;
+        // Before adding pmf(k), `cdf` is P(B <= k - 1) = P(B < k): rank k may be `l`.
+        if k >= 1 && cdf <= tail {
+            l = Some(k);
+        }
+        cdf += log_pmf.exp();
+        // Now `cdf` is P(B <= k), so P(B >= k + 1) = 1 - cdf: rank k + 1 may be `u`.
+        if u.is_none() && 1.0 - cdf <= tail && k < n {
+            u = Some(k + 1);
+        }
+    }
+    (l, u)
+}
+
+/// Points of the exceedance curve of `sorted` (ascending): `(x, P(X > x), low, high)` with
+/// the share's 95 % Wilson interval, at about `points` values spread evenly in the log of
+/// the exceedance, from the smallest value to the largest (whose share is 0: the curve
+/// ends at the last value exceeded, `1 / n`).
+#[must_use]
+pub fn curve(sorted: &[f64], points: usize) -> Vec<(f64, f64, f64, f64)> {
+    let n = sorted.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    let mut ranks: Vec<usize> = (0..=points)
+        .map(|j| {
+            // Exceeding counts from n - 1 down to 1, evenly in the log.
+            let e = ((n as f64).ln() * (1.0 - j as f64 / points as f64)).exp();
+            n - (e.round() as usize).clamp(1, n)
+        })
+        .collect();
+    ranks.dedup();
+    ranks
+        .into_iter()
+        .filter_map(|r| {
+            let x = sorted[r];
+            // Samples above x (ties with x do not exceed it).
+            let above = n - sorted.partition_point(|v| *v <= x);
+            (above > 0).then(|| {
+                let (lo, hi) = wilson_interval(above as u64, n as u64);
+                (x, above as f64 / n as f64, lo, hi)
+            })
+        })
+        .collect()
+}
+
+/// A design value as a table cell: the value and its interval.
+fn cell(d: Option<DesignValue>) -> String {
+    let Some(d) = d else {
+        return "–".to_string();
+    };
+    let end = |v: Option<f64>, none: &str| v.map_or(none.to_string(), |v| format!("{v:.4}"));
+    format!(
+        "{:.4} ({} – {})",
+        d.value,
+        end(d.low, "?"),
+        end(d.high, "more samples needed")
+    )
+}
+
+/// The report's section: per quantity, the design values over all legs and per leg.
+pub fn markdown(quantities: &[Quantity]) -> String {
+    let mut t = String::new();
+    let n = quantities.first().map_or(0, |q| q.overall.len());
+    let _ = writeln!(
+        t,
+        "\n## Load exceedance\n\nThe design value at 99 % (99.9 %) is the value that 1 % (0.1 %) \
+         of the {n} samples exceed; in brackets its 95 % interval from order statistics (no \
+         assumed distribution). \"all legs\" takes the largest leg of each sample. \
+         `touchdown plot` draws the exceedance curves.\n\n\
+         | quantity | leg | 99 % (95 % interval) | 99.9 % (95 % interval) | largest |\n\
+         |---|---|---:|---:|---:|"
+    );
+    for q in quantities {
+        let rows = std::iter::once(("all legs".to_string(), &q.overall))
+            .filter(|_| !q.legs.is_empty())
+            .chain(q.legs.iter().enumerate().map(|(k, v)| (k.to_string(), v)));
+        let rows: Vec<(String, &Vec<f64>)> = if q.legs.is_empty() {
+            vec![("–".to_string(), &q.overall)]
+        } else {
+            rows.collect()
+        };
+        for (leg, v) in rows {
+            let _ = writeln!(
+                t,
+                "| {} ({}) | {leg} | {} | {} | {:.4} |",
+                q.name,
+                q.unit,
+                cell(design_value(v, DESIGN_LEVELS[0])),
+                cell(design_value(v, DESIGN_LEVELS[1])),
+                v.last().copied().unwrap_or(0.0)
+            );
+        }
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranks_cover_the_quantile_as_the_binomial_says() {
+        // n = 1000, level 0.99: B ~ Bin(1000, 0.99) has mean 990, sd 3.15. P(B <= 982) =
+        // 0.0138 and P(B <= 983) = 0.0264 (summed from the pmf), so l = 983 (P(B < 983) <=
+        // 0.025 < P(B < 984)); P(B >= 996) = 0.0287 and P(B >= 997) = 0.0101, so u = 997.
+        let (l, u) = order_statistic_ranks(1000, 0.99);
+        assert_eq!((l, u), (Some(983), Some(997)));
+        // Too few samples above the 99.9 % quantile of 1000: P(B >= 1000) = 0.368.
+        assert_eq!(order_statistic_ranks(1000, 0.999).1, None);
+    }
+
+    #[test]
+    fn curve_counts_what_lies_above() {
+        let v: Vec<f64> = (1..=100).map(f64::from).collect();
+        let c = curve(&v, 20);
+        // The first point: the smallest value, 99 of 100 above it.
+        assert_eq!((c[0].0, c[0].1), (1.0, 0.99));
+        // The last: 99, one value above.
+        let last = c.last().unwrap();
+        assert_eq!((last.0, last.1), (99.0, 0.01));
+        assert!(c.iter().all(|p| p.2 <= p.1 && p.1 <= p.3));
+    }
+}
