@@ -7,12 +7,12 @@ use super::laws::{
     DescentDraw, LAW_MEMORY, LawCommand, attitude_torque, descent_force, tilted_past,
 };
 use super::model::ControlModel;
+use super::noise::{normal, normal3, small_rotation, truncated};
 use super::sensors::{Sensed, Truth};
 use super::thrust::Thrust;
-use crate::dist::{normal_quantile, quantile};
-use crate::rng::{stream, uniform_open01};
-use crate::scenario::{Dist, MAX_THRUSTERS, Sample, Target};
-use glam::{DQuat, DVec3};
+use crate::rng::stream;
+use crate::scenario::{MAX_THRUSTERS, Sample, Target};
+use glam::DVec3;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 /// The phase of a lander's control loop.
@@ -147,41 +147,6 @@ pub struct ControlReport {
     pub thrust_n: Vec<f64>,
     /// The phase of the loop: "descent", "fall", "hold_down", "user" or "done".
     pub phase: &'static str,
-}
-
-/// A normal draw with standard deviation `sd` (0 draws nothing).
-fn normal(rng: &mut Xoshiro256PlusPlus, sd: f64) -> f64 {
-    if sd > 0.0 {
-        sd * normal_quantile(uniform_open01(rng))
-    } else {
-        0.0
-    }
-}
-
-fn normal3(rng: &mut Xoshiro256PlusPlus, sd: f64) -> DVec3 {
-    DVec3::new(normal(rng, sd), normal(rng, sd), normal(rng, sd))
-}
-
-/// A normal draw truncated at three standard deviations (0 for `sd` 0).
-fn truncated(rng: &mut Xoshiro256PlusPlus, sd: f64) -> f64 {
-    if sd > 0.0 {
-        let d = Dist::Normal {
-            mean: 0.0,
-            sd,
-            min: -3.0 * sd,
-            max: 3.0 * sd,
-        };
-        quantile(&d, uniform_open01(rng), 0)
-    } else {
-        0.0
-    }
-}
-
-/// The unit quaternion of a small rotation vector `v` (rad), without trigonometry:
-/// `(v / 2, 1)` normalised, within `|v|^3 / 48` of the exact rotation.
-fn small_rotation(v: DVec3) -> DQuat {
-    let h = v * 0.5;
-    DQuat::from_xyzw(h.x, h.y, h.z, 1.0).normalize()
 }
 
 /// Below this, what is left of a period or an on-time is the rounding of differences of

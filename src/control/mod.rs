@@ -17,6 +17,7 @@ mod check;
 mod lane;
 mod laws;
 mod model;
+mod noise;
 mod sensors;
 mod thrust;
 
