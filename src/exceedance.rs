@@ -42,7 +42,7 @@ const WHOLE: [(&str, &str, &str); 1] =
 /// The quantities of the sweep file at `path` that it has: the strut loads (files written
 /// before they existed have none), the stroke with dampers (`dampers`), the acceleration.
 pub fn gather(path: &Path, dampers: bool) -> anyhow::Result<Vec<Quantity>> {
-    let t = Table::read(path, |n| {
+    let mut t = Table::read(path, |n| {
         n.starts_with("leg") && PER_LEG.iter().any(|q| n.ends_with(q.0)) || n == WHOLE[0].0
     })?;
     let mut quantities = Vec::new();
@@ -51,20 +51,23 @@ pub fn gather(path: &Path, dampers: bool) -> anyhow::Result<Vec<Quantity>> {
         if legs == 0 || (suffix == "stroke_m" && !dampers) {
             continue;
         }
-        let columns: Vec<&[f64]> = (0..legs)
-            .map(|k| t.column(&format!("leg{k}_{suffix}"), path))
-            .collect::<anyhow::Result<_>>()?;
+        // Each column taken out of the table and scaled in place: no copy is kept.
+        let mut columns = Vec::with_capacity(legs);
+        for k in 0..legs {
+            let name = format!("leg{k}_{suffix}");
+            t.column(&name, path)?;
+            let mut c = t.columns.remove(&name).unwrap_or_default();
+            c.iter_mut().for_each(|v| *v *= factor);
+            columns.push(c);
+        }
         let overall = (0..t.rows)
-            .map(|i| factor * columns.iter().map(|c| c[i]).fold(0.0, f64::max))
+            .map(|i| columns.iter().map(|c| c[i]).fold(0.0, f64::max))
             .collect();
-        let legs = columns
-            .iter()
-            .map(|c| c.iter().map(|v| factor * v).collect())
-            .collect();
-        quantities.push(Quantity::new(name, unit, legs, overall));
+        quantities.push(Quantity::new(name, unit, columns, overall));
     }
     for (column, name, unit) in WHOLE {
-        let values = t.column(column, path)?.to_vec();
+        t.column(column, path)?;
+        let values = t.columns.remove(column).unwrap_or_default();
         quantities.push(Quantity::new(name, unit, Vec::new(), values));
     }
     Ok(quantities)

@@ -155,6 +155,8 @@ pub fn report(
     }
     write_allowable(&mut t, &mut sectors);
     write_loads(&mut t, &mut loads);
+    // Their values are written: the memory goes to the exceedance's.
+    drop((sectors, loads, slopes));
     t.push_str(&crate::exceedance::markdown(&crate::exceedance::gather(
         path,
         dampers(meta) == Some(true),
