@@ -1,7 +1,8 @@
 //! `touchdown report`: what a sweep file says, for people. Outcome counts with 95 %
 //! confidence intervals, the allowable slope per sector of downhill azimuth relative to the
 //! lander, the peak loads, (with thrusters) the propellant and firings, and (with a
-//! descent) the state the descent released the lander in. Markdown, so that it reads on a
+//! descent) the state the descent released the lander in; with dampers or `[limits]`, the
+//! samples that bottomed a damper or broke a limit (`gear`). Markdown, so that it reads on a
 //! terminal and pastes into a design note.
 
 use crate::output::sweep::{SweepBatch, SweepFile};
@@ -12,8 +13,11 @@ use crate::stats::{
 };
 use anyhow::{anyhow, bail};
 use arrow_array::{Float64Array, UInt32Array};
+use gear::{Gear, GearColumns};
 use std::fmt::Write as _;
 use std::path::Path;
+
+mod gear;
 
 /// A load column gathered over the file.
 struct Load {
@@ -34,12 +38,14 @@ struct Gathered {
     release: Release,
     /// Each sample's slope and outcome, where the report weighs them onto a terrain.
     slopes: Vec<(f64, Outcome)>,
+    gear: Gear,
 }
 
 impl Gathered {
     /// The rows of `file`, gathered; each sample's slope and outcome kept if `keep_slopes`.
     fn read(file: &mut SweepFile, keep_slopes: bool) -> anyhow::Result<Gathered> {
         let legs = file.legs();
+        let mut gear = Gear::default();
         let mut counts = [0u64; Outcome::ALL.len()];
         let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
         let mut loads = [
@@ -78,6 +84,7 @@ impl Gathered {
             let control = ThrustColumns::of(&b)?;
             let released = ReleaseColumns::of(&b)?;
             let outcomes = b.outcomes()?;
+            let gear_columns = GearColumns::of(&b)?;
             let (slope, azimuth, yaw) =
                 (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
             let (acc, acc_z) = (
@@ -111,6 +118,7 @@ impl Gathered {
                 if let Some(r) = &released {
                     release.push(r, i);
                 }
+                gear.push(&gear_columns, i, o);
             }
         }
         Ok(Gathered {
@@ -120,6 +128,7 @@ impl Gathered {
             thrust,
             release,
             slopes,
+            gear,
         })
     }
 }
@@ -139,6 +148,7 @@ pub fn report(
         mut thrust,
         mut release,
         slopes,
+        gear,
     } = Gathered::read(&mut file, terrain.is_some())?;
     let meta = file.metadata();
     let total: u64 = counts.iter().sum();
@@ -149,7 +159,11 @@ pub fn report(
     // `held` is listed where a lander can be held: in a sweep with a control loop.
     let controlled = thrust.controlled() || counts[Outcome::Held as usize] > 0;
     let mut t = String::new();
-    write_outcomes(&mut t, path, meta, &counts, total, controlled);
+    write_outcomes(&mut t, path, meta, &counts, total, controlled, &gear);
+    let scenario = meta
+        .get("touchdown.scenario")
+        .and_then(|text| crate::scenario::Scenario::from_toml(text).ok());
+    gear.write(&mut t, total, scenario.as_ref());
     if let Some((terrain, text)) = terrain {
         write_terrain(&mut t, path, meta, &slopes, terrain, text)?;
     }
@@ -176,6 +190,7 @@ fn write_outcomes(
     counts: &[u64; Outcome::ALL.len()],
     total: u64,
     controlled: bool,
+    gear: &Gear,
 ) {
     let _ = writeln!(t, "# touchdown report: {}\n", path.display());
     let _ = writeln!(
@@ -189,16 +204,24 @@ fn write_outcomes(
         t,
         "| outcome | samples | share | 95 % interval |\n|---|---:|---:|---:|"
     );
-    for (name, k) in Outcome::listed(controlled).map(|o| (o.name(), &counts[o as usize])) {
-        let (lo, hi) = wilson_interval(*k, total);
-        let _ = writeln!(
-            t,
-            "| {name} | {k} | {:.2} % | {:.2} – {:.2} % |",
-            100.0 * *k as f64 / total as f64,
-            100.0 * lo,
-            100.0 * hi
-        );
+    for o in Outcome::listed(controlled) {
+        share_row(t, o.name(), counts[o as usize], total);
+        if let (Outcome::Stable, Some((within, _))) = (o, gear.limits) {
+            share_row(t, "stable within limits", within, total);
+        }
     }
+}
+
+/// A row of samples: `k` of `total`, their share and its 95 % Wilson interval.
+fn share_row(t: &mut String, name: &str, k: u64, total: u64) {
+    let (lo, hi) = wilson_interval(k, total);
+    let _ = writeln!(
+        t,
+        "| {name} | {k} | {:.2} % | {:.2} – {:.2} % |",
+        100.0 * k as f64 / total as f64,
+        100.0 * lo,
+        100.0 * hi
+    );
 }
 
 /// The outcome shares weighed onto the terrain of a `--slope-distribution`.

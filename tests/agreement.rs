@@ -92,7 +92,7 @@ fn compare_kernels(
             Some(1e-3 + 1e-9)
         };
         let (mut disagree, mut unexplained, mut drifted) = (0, 0, 0);
-        let mut worst = [0.0f64; 4];
+        let mut worst = [0.0f64; 5];
         for (i, (row, r)) in rows.iter().zip(reference).enumerate() {
             assert_eq!(row.sample.index, i as u64, "{name}: rows in sample order");
             let k = &row.summary;
@@ -123,11 +123,23 @@ fn compare_kernels(
                 );
                 continue;
             }
-            drifted += u64::from(check_close(&name, i, r, k, contact_within, &mut worst));
+            // Strut-load peaks: see `check_close`.
+            let loads_within = match precision {
+                Precision::F64 => 0.01,
+                Precision::F32 => 0.1,
+            };
+            drifted += u64::from(check_close(
+                &name,
+                i,
+                r,
+                k,
+                (contact_within, loads_within),
+                &mut worst,
+            ));
         }
         println!(
-            "{name}: {n} samples, {disagree} outcome disagreements ({unexplained} unexplained), {drifted} drifted; worst agreeing |diff|: decided {:.2e} s, max tilt {:.2e} deg, peak accel {:.2e} (relative), stroke {:.2e} m",
-            worst[0], worst[1], worst[2], worst[3]
+            "{name}: {n} samples, {disagree} outcome disagreements ({unexplained} unexplained), {drifted} drifted; worst agreeing |diff|: decided {:.2e} s, max tilt {:.2e} deg, peak accel {:.2e} (relative), stroke {:.2e} m, strut loads {:.2e} (relative)",
+            worst[0], worst[1], worst[2], worst[3], worst[4]
         );
         out.push((isa.kernel(precision), [n, disagree, unexplained, drifted]));
     }
@@ -185,16 +197,34 @@ fn near_threshold(
 /// either side of it by rounding): `contact_within` s, or, where a control loop acts in
 /// the fall (`None`), a sample drifts when it differs by more than 10 ms. Later results pass through the chaos of the bounces:
 /// a sample "drifts" when its decided time differs by more than 50 ms + 2 %, its maximum
-/// tilt by more than 0.5 deg or its peak acceleration by more than 1 %. Drifted samples
-/// are counted, not failed one by one; the caller bounds their share.
+/// tilt by more than 0.5 deg, its peak acceleration or a leg's peak axial or side load by
+/// more than `loads_within` (of at least 1 N), or a leg bottoms in one and not the other.
+/// Drifted samples are counted, not failed one by one; the caller bounds their share.
 fn check_close(
     name: &str,
     i: usize,
     r: &Summary,
     k: &Summary,
-    contact_within: Option<f64>,
-    worst: &mut [f64; 4],
+    (contact_within, loads_within): (Option<f64>, f64),
+    worst: &mut [f64; 5],
 ) -> bool {
+    // Strut-load peaks relative to the larger of the peak and 1 N (a leg's share of the
+    // default lander's weight is 0.42 N; impacts load a strut with tens to hundreds),
+    // within `loads_within`: 1 % in f64 lanes; 10 % in f32 lanes, whose first contact
+    // falls up to a step (1 ms) apart from the reference's, so that the steps sample a
+    // leg's stiff impact (a few ms long) at other instants and its sampled peak moves by
+    // percents (the peak acceleration, the sum of the legs' forces, moves less).
+    // Their times are not compared: a crushing damper holds the axial load at its crush
+    // force for many steps, and which of them reaches it first is a matter of rounding.
+    let relative = |a: f64, b: f64| (a - b).abs() / a.abs().max(1.0);
+    let mut struts_drift = false;
+    let mut strut_loads = 0.0f64;
+    for (a, b) in r.legs.iter().zip(&k.legs) {
+        let loads = relative(a.peak_axial_force_n, b.peak_axial_force_n)
+            .max(relative(a.peak_side_force_n, b.peak_side_force_n));
+        strut_loads = strut_loads.max(loads);
+        struts_drift |= loads > loads_within || a.bottomed != b.bottomed;
+    }
     let d = [
         (r.decided_s - k.decided_s).abs(),
         (r.max_tilt_deg - k.max_tilt_deg).abs(),
@@ -205,6 +235,7 @@ fn check_close(
             .zip(&k.legs)
             .map(|(a, b)| (a.stroke_m - b.stroke_m).abs())
             .fold(0.0, f64::max),
+        strut_loads,
     ];
     for (w, x) in worst.iter_mut().zip(d) {
         *w = w.max(x);
@@ -235,7 +266,7 @@ fn check_close(
         (Some(a), Some(b), None) => contact_drift = (a - b).abs() > 0.01,
         (a, b, _) => assert_eq!(a, b, "{name} sample {i}: first contact"),
     }
-    contact_drift || d[0] > 0.05 + 0.02 * r.decided_s || d[1] > 0.5 || d[2] > 0.01
+    contact_drift || struts_drift || d[0] > 0.05 + 0.02 * r.decided_s || d[1] > 0.5 || d[2] > 0.01
 }
 
 fn scenario(toml: &str) -> Scenario {
@@ -343,9 +374,10 @@ fn kernels_agree_with_the_reference() {
             "kernel {isa}: {total} samples, {disagree} disagreements, {unexplained} unexplained, {drifted} drifted"
         );
         // f64 lanes round as the reference does, up to the order of sums: few samples
-        // drift (none of the 600 with a control loop). f32 lanes round 2^29 times
-        // coarser, and a lander's bounces amplify it: measured 3.6-3.7 % (252-257 of
-        // 7000) drift in f32 in the three instruction sets. A defect of the f32 lanes (a
+        // drift (4-7 of 8600; 1 of the 600 with a control loop, by a strut load). f32
+        // lanes round 2^29 times coarser, and a lander's bounces amplify it: measured
+        // 3.6-3.7 % (252-257 of 7000) drift in f32 in the three instruction sets, and with
+        // the strut loads' peaks compared (issue 30) 4.3-4.4 % (374-375 of 8600). A defect of the f32 lanes (a
         // constant rounded to 0, a threshold lost) shifts results in most samples that
         // meet it, not a few percent. A control loop in f32 amplifies more: every control
         // instant quantises on-times to minimum impulse bits, and a rounding that moves a

@@ -27,6 +27,7 @@ mod scenario_fuzz;
 mod scenarios;
 mod sensitivity;
 mod shards;
+mod struts;
 mod study;
 mod sweep_cli;
 mod thrust;

@@ -25,6 +25,14 @@ pub struct LegLanes<L: Lane> {
     /// The friction anchor when the current rest began (see `outcome`).
     pub rest_anchor_m: Vec3<L>,
     pub peak_normal_n: L,
+    /// The peak axial strut load (compressive positive) and the start of its step, NaN
+    /// until the leg bears a positive one (MODEL.md section 9).
+    pub peak_axial_n: L,
+    pub peak_axial_s: L,
+    /// The squared peak side load (its root, taken once at the end, is the peak of the
+    /// roots) and the start of its step, NaN until the leg bears one.
+    pub peak_side_squared: L,
+    pub peak_side_s: L,
 }
 
 /// One leg during the current step, for the outcome tracking (aligned as `LegLanes`).
@@ -45,6 +53,10 @@ pub struct LegStep<L: Lane> {
     pub tip_velocity_m_s: Vec3<L>,
     pub penetration_m: L,
     pub normal_n: L,
+    /// The strut's axial load (`F . strut_up`, compressive positive) and its side load
+    /// squared (`|F - (F . strut_up) strut_up|^2`), 0 off the surface.
+    pub axial_n: L,
+    pub side_squared: L,
     /// Mask: the footpad slips (in contact, friction at its cap).
     pub slipping: L::Mask,
 }
@@ -203,6 +215,10 @@ impl<L: Lane> Block<L> {
             anchored: all_false::<L>(),
             rest_anchor_m: Vec3::ZERO,
             peak_normal_n: zero,
+            peak_axial_n: zero,
+            peak_axial_s: lane(f64::NAN),
+            peak_side_squared: zero,
+            peak_side_s: lane(f64::NAN),
         };
         let leg_step = LegStep {
             height_m: zero,
@@ -211,6 +227,8 @@ impl<L: Lane> Block<L> {
             tip_velocity_m_s: Vec3::ZERO,
             penetration_m: zero,
             normal_n: zero,
+            axial_n: zero,
+            side_squared: zero,
             slipping: all_false::<L>(),
         };
         let identity = Quat {
@@ -299,6 +317,10 @@ impl<L: Lane> Block<L> {
             leg.anchored.set_lane(i, false);
             leg.rest_anchor_m.set_lane(i, [0.0; 3]);
             set(&mut leg.peak_normal_n, 0.0);
+            set(&mut leg.peak_axial_n, 0.0);
+            set(&mut leg.peak_axial_s, f64::NAN);
+            set(&mut leg.peak_side_squared, 0.0);
+            set(&mut leg.peak_side_s, f64::NAN);
         }
         let s = &mut self.surface;
         s.normal.set_lane(i, init.normal);

@@ -76,18 +76,16 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: boo
         // itself where it needs them, `start_tips`.)
         let (normal_n, slipping) = if (contact & block.active).to_bitmask() == 0 {
             leg_state.anchored = all_false::<L>();
+            out.axial_n = zero;
+            out.side_squared = zero;
             (zero, all_false::<L>())
         } else {
             let arm = rotation.mul_vec3(tip_b);
             let tip = position + arm;
             let tip_velocity = block.velocity_m_s + rate_i.cross(arm);
             out.tip_velocity_m_s = tip_velocity;
-            // The strut direction matters to the dampers only.
-            let strut_up = if DAMPERS {
-                -rotation.mul_vec3(leg.strut_axis)
-            } else {
-                Vec3::ZERO
-            };
+            // The strut direction, footpad to hip, in I: the dampers' and the strut loads'.
+            let strut_up = -rotation.mul_vec3(leg.strut_axis);
             let (f, normal_n, slipping) = contact::leg_force::<L, DAMPERS>(
                 p,
                 dt,
@@ -101,6 +99,11 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: boo
             );
             force_n += f;
             moment_i += arm.cross(f);
+            // The strut loads (MODEL.md section 9): along the strut, compressive positive,
+            // and across it, squared (its root only once, for the summary).
+            let axial = f.dot(strut_up);
+            out.axial_n = axial;
+            out.side_squared = strut_up.mul_neg_add(axial, f).length_squared();
             (normal_n, slipping)
         };
         out.penetration_m = penetration;

@@ -24,7 +24,7 @@ const BATCH_ROWS: usize = 8192;
 /// A column: name, unit, description.
 type Column = (String, &'static str, String);
 
-/// Columns of the body, then 7 columns per leg. With a control loop (`controlled`) the
+/// Columns of the body, then 9 columns per leg. With a control loop (`controlled`) the
 /// accelerometer's column says that thrust is in it (a passive trace's says what it said
 /// before there was thrust).
 fn columns(legs: usize, controlled: bool) -> Vec<Column> {
@@ -85,6 +85,16 @@ fn columns(legs: usize, controlled: bool) -> Vec<Column> {
             ("normal_force_n", "N", "normal contact force"),
             ("friction_force_n", "N", "friction force magnitude"),
             ("stroke_m", "m", "damper stroke"),
+            (
+                "axial_force_n",
+                "N",
+                "axial strut load: the footpad's force along the strut, compressive positive",
+            ),
+            (
+                "side_force_n",
+                "N",
+                "side load: the footpad's force across the strut",
+            ),
         ] {
             c.push((format!("leg{k}_{n}"), u, format!("leg {k}: {d}")));
         }
@@ -300,6 +310,8 @@ fn row(model: &Model, r: &StepReport, out: &mut Vec<f64>) {
             l.normal_n,
             l.friction_n,
             l.stroke_m,
+            l.axial_force_n,
+            l.side_force_n,
         ]);
     }
 }

@@ -2,8 +2,8 @@
 //! MODEL.md. It drives `touchdown trace` and is the oracle the SIMD kernels must agree with.
 //!
 //! Files mirror the kernels: `rigid_body`, `contact`, `honeycomb`, `step`, `outcome`;
-//! `model` holds the parameters, `run` one whole sample, and `touchdown` the state in which
-//! a sample met the surface.
+//! `model` holds the parameters, `run` one whole sample, `touchdown` the state in which
+//! a sample met the surface, and `strut` what it did to the struts.
 
 pub mod contact;
 pub mod honeycomb;
@@ -12,6 +12,7 @@ pub mod outcome;
 pub mod rigid_body;
 pub mod run;
 pub mod step;
+pub mod strut;
 pub mod touchdown;
 
 pub use model::Model;

@@ -123,6 +123,8 @@ pub struct Model {
     /// The parameters each sample draws (`Scenario::sampled`): `for_sample` puts a
     /// sample's values in their place.
     pub sampled: Sampled,
+    /// The structural limits (`[limits]`), if any: a summary then says which it broke.
+    pub limits: Option<crate::scenario::Limits>,
 }
 
 impl Model {
@@ -240,6 +242,7 @@ impl Model {
             start: s.initial.start,
             control: crate::control::ControlModel::of(s, leg_reach_m, footpad_depth_m),
             sampled: s.sampled,
+            limits: s.limits,
         };
         // A steady slide is decided early in all lanes of a sweep or in none: where the
         // parameters it depends on are drawn, only if it may be for every draw (the

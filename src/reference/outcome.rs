@@ -34,7 +34,9 @@
 
 use super::model::Model;
 use super::step::{State, StepReport};
+use super::strut::{StrutPeaks, stroke_margin};
 use super::touchdown::{Met, Touchdown};
+use crate::scenario::Loads;
 use crate::slope::Surface;
 use glam::{DMat3, DVec3};
 use kernels::outcome::{
@@ -112,6 +114,18 @@ pub struct LegSummary {
     pub stroke_m: f64,
     /// Energy the damper absorbed, `∫ F_c ds`.
     pub absorbed_j: f64,
+    /// Peak axial strut load, compressive positive, N (0 if it never bore one).
+    pub peak_axial_force_n: f64,
+    /// Start of the step of that peak, s (None if it never bore a load).
+    pub peak_axial_force_s: Option<f64>,
+    /// Peak side load across the strut, N.
+    pub peak_side_force_n: f64,
+    /// Start of the step of that peak, s (None if it never bore a load).
+    pub peak_side_force_s: Option<f64>,
+    /// Usable stroke less the final stroke, m (0 once bottomed; None without dampers).
+    pub stroke_margin_m: Option<f64>,
+    /// Whether the damper used up its stroke (`strut::BOTTOMED_WITHIN`).
+    pub bottomed: bool,
 }
 
 /// The results of one sample (MODEL.md section 9).
@@ -147,6 +161,43 @@ pub struct Summary {
     /// What the control loop did (scenarios with one; boxed, so that the rows of a passive
     /// sweep stay small: a window of them is in memory).
     pub control: Option<Box<crate::control::ControlSummary>>,
+    /// The structural limits it broke (with `[limits]`; `Summary::judge`).
+    pub limits_broken: Option<crate::scenario::Broken>,
+}
+
+impl Summary {
+    /// The number of legs whose damper bottomed.
+    #[must_use]
+    pub fn legs_bottomed(&self) -> u32 {
+        self.legs.iter().map(|l| u32::from(l.bottomed)).sum()
+    }
+
+    /// Finishes the summary of a sample of `model` (the reference's and the kernels'
+    /// alike): each leg's stroke margin and whether it bottomed (with dampers), and the
+    /// limits it broke (with `[limits]`).
+    pub fn judge(&mut self, model: &Model) {
+        if let Some(h) = &model.honeycomb {
+            let usable = h.usable_stroke_m();
+            for leg in &mut self.legs {
+                let (margin, bottomed) = stroke_margin(usable, leg.stroke_m);
+                leg.stroke_margin_m = Some(margin);
+                leg.bottomed = bottomed;
+            }
+        }
+        let legs = &self.legs;
+        let most = |get: fn(&LegSummary) -> f64| legs.iter().map(get).fold(0.0, f64::max);
+        let loads = Loads {
+            axial_force_n: most(|l| l.peak_axial_force_n),
+            side_force_n: most(|l| l.peak_side_force_n),
+            acceleration_m_s2: self.peak_acceleration_m_s2,
+            stroke_margin_m: legs
+                .iter()
+                .filter_map(|l| l.stroke_margin_m)
+                .reduce(f64::min),
+            bottomed: legs.iter().any(|l| l.bottomed),
+        };
+        self.limits_broken = model.limits.map(|limits| limits.broken(&loads));
+    }
 }
 
 /// Collects the summary and decides the outcome, one step at a time.
@@ -166,6 +217,8 @@ pub struct Tracker {
     met: Option<Met>,
     max_penetration: f64,
     peak_normal: Vec<f64>,
+    /// Every leg's strut-load peaks.
+    struts: Vec<StrutPeaks>,
     steps: u64,
 }
 
@@ -186,6 +239,7 @@ impl Tracker {
             met: None,
             max_penetration: 0.0,
             peak_normal: vec![0.0; model.legs.len()],
+            struts: vec![StrutPeaks::NONE; model.legs.len()],
             steps: 0,
         }
     }
@@ -214,8 +268,10 @@ impl Tracker {
         let mut contacts = 0;
         let mut resting = 0;
         let mut deepest = f64::NEG_INFINITY;
-        for (leg, peak) in report.legs.iter().zip(&mut self.peak_normal) {
+        let legs = report.legs.iter().zip(&mut self.peak_normal);
+        for ((leg, peak), strut) in legs.zip(&mut self.struts) {
             *peak = peak.max(leg.normal_n);
+            strut.observe(leg, report.t_s);
             contacts += usize::from(leg.in_contact());
             resting += usize::from(leg.penetration_m > -REST_GAP_M);
             deepest = deepest.max(leg.penetration_m);
@@ -363,13 +419,21 @@ impl Tracker {
                 .peak_normal
                 .iter()
                 .zip(&last.legs)
-                .map(|(p, l)| LegSummary {
+                .zip(&self.struts)
+                .map(|((p, l), strut)| LegSummary {
                     peak_normal_force_n: finite_or_zero(*p),
                     stroke_m: finite_or_zero(l.stroke_m),
                     absorbed_j: finite_or_zero(l.absorbed_j),
+                    peak_axial_force_n: finite_or_zero(strut.axial_n),
+                    peak_axial_force_s: (!strut.axial_s.is_nan()).then_some(strut.axial_s),
+                    peak_side_force_n: finite_or_zero(strut.side_n),
+                    peak_side_force_s: (!strut.side_s.is_nan()).then_some(strut.side_s),
+                    stroke_margin_m: None,
+                    bottomed: false,
                 })
                 .collect(),
             control: None,
+            limits_broken: None,
         }
     }
 }

@@ -123,6 +123,7 @@ pub fn run_to_end(
         observe(&report);
         if let Some(outcome) = tracker.observe(model, &surface, &report, &state) {
             let mut summary = tracker.finish(&surface, outcome, &state);
+            summary.judge(model);
             if let Some((m, c)) = &mut control {
                 summary.control = Some(Box::new(c.finish(m, state.thrust.event_in_s)));
             }

@@ -42,6 +42,11 @@ pub struct LegReport {
     pub slipping: bool,
     /// Damper stroke after the step, m.
     pub stroke_m: f64,
+    /// The strut's axial load: the footpad's force along the strut towards the hip,
+    /// compressive positive, N (0 out of contact; MODEL.md section 9).
+    pub axial_force_n: f64,
+    /// The strut's side load: the footpad's force across the strut, N (0 out of contact).
+    pub side_force_n: f64,
 }
 
 impl LegReport {
@@ -123,6 +128,8 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
         let tip_velocity = body.velocity_m_s + rate_i.cross(arm);
         let height = footpad_height(surface, &body, normal_b, tip_b);
         let (penetration, normal) = surface.penetration_at(model.terrain.as_ref(), tip, height);
+        // The strut direction, footpad to hip, in I: the damper's and the strut loads'.
+        let strut_up = -(rotation * leg.strut_axis);
         let f = if penetration > 0.0 {
             contact::leg_force(
                 &model.contact,
@@ -132,7 +139,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
                 normal,
                 tip,
                 tip_velocity,
-                -(rotation * leg.strut_axis),
+                strut_up,
                 leg_state,
             )
         } else {
@@ -146,6 +153,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
         };
         force_n += f.force_n;
         moment_i += arm.cross(f.force_n);
+        let (axial_force_n, side_force_n) = strut_loads(f.force_n, strut_up);
         *out = LegReport {
             tip_m: tip,
             tip_velocity_m_s: tip_velocity,
@@ -154,6 +162,8 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
             friction_n: f.friction_n,
             slipping: f.slipping,
             stroke_m: leg_state.stroke_m,
+            axial_force_n,
+            side_force_n,
         };
     }
     let thrust = state.thrust;
@@ -176,6 +186,15 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
     );
     state.thrust.event_in_s -= dt;
     add_time(&mut state.t_s, &mut state.t_error_s, dt);
+}
+
+/// The loads of a strut whose footpad takes the force `force_n` (in I), `strut_up` its
+/// unit direction from the footpad to the hip (in I): along it, compressive positive,
+/// `A = F . strut_up` (`-F_B . u` in B), and across it, `|F - A strut_up|`, N.
+#[must_use]
+pub fn strut_loads(force_n: DVec3, strut_up: DVec3) -> (f64, f64) {
+    let axial = force_n.dot(strut_up);
+    (axial, (force_n - strut_up * axial).length())
 }
 
 /// Height above the base plane of the footpad at `tip_b` (in B): that of the CG, plus the

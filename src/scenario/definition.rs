@@ -6,6 +6,7 @@ use super::damper::{Damper, read_damper};
 use super::initial::{Initial, read_initial};
 use super::inputs::{Dist, Inputs, PARAMETERS, Parameter, Sampled, read_inputs};
 use super::lander::{Geometry, Lander, read_lander};
+use super::limits::{Limits, read_limits};
 use super::outcome::{Outcome, read_outcome};
 use super::reader::table;
 use super::simulation::{Simulation, read_simulation};
@@ -84,6 +85,8 @@ table! {
         propulsion: Propulsion = r.section(key, read_propulsion)?,
         /// The control loop that fires the thrusters, `[control]`, if any.
         control: Option<Control> = r.optional(key, read_control)?,
+        /// The structural limits, `[limits]`, if any.
+        limits: Option<Limits> = r.optional(key, read_limits)?,
         /// The table of the user's own inputs (`sweep --inputs`): row `i` gives sample `i`
         /// the values of its columns (`crate::table::attach`); none in a scenario file.
         table: Option<std::sync::Arc<InputTable>> = None,

@@ -20,6 +20,7 @@ mod error;
 mod initial;
 mod inputs;
 mod lander;
+mod limits;
 mod outcome;
 mod read;
 mod reader;
@@ -42,6 +43,7 @@ pub use inputs::{
     Parameter, Sampled, VALUES, check_value, stream_name, value_key, value_name,
 };
 pub use lander::{Geometry, Lander};
+pub use limits::{Broken, LIMIT_NAMES, Limits, Loads};
 pub use outcome::Outcome;
 pub use read::{with_design, with_seed};
 pub use reader::DEFAULT_TOML;

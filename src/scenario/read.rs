@@ -94,6 +94,9 @@ impl Scenario {
         s.check_can_land()?;
         s.check_design()?;
         s.check_sampled()?;
+        if let Some(limits) = &s.limits {
+            limits.check(s.damper.enabled)?;
+        }
         Ok(s)
     }
 

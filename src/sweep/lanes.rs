@@ -102,8 +102,9 @@ pub(super) fn sample_lane_init(model: &Model, sample: &Sample) -> LaneInit {
     }
 }
 
-/// The summary of the sample decided in lane `i` (the reference's `Tracker::finish`).
-pub(super) fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
+/// The summary of the sample of `model` decided in lane `i` (the reference's
+/// `Tracker::finish`, then `Summary::judge`).
+pub(super) fn lane_summary<L: Lane>(model: &Model, block: &Block<L>, i: usize) -> Summary {
     let at = |l: &L| l.lane(i);
     let t = &block.track;
     let normal = DVec3::from_array(block.surface.normal.lane(i));
@@ -115,7 +116,8 @@ pub(super) fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
     let along = moved - normal * normal.dot(moved);
     let finite_or_zero = |x: f64| if x.is_finite() { x } else { 0.0 };
     let first = at(&t.first_contact_s);
-    Summary {
+    let time = |s: f64| (!s.is_nan()).then_some(s);
+    let mut summary = Summary {
         outcome: Outcome::ALL[at(&t.outcome) as usize],
         decided_s: at(&block.t_s),
         steps: at(&t.steps) as u64,
@@ -146,10 +148,19 @@ pub(super) fn lane_summary<L: Lane>(block: &Block<L>, i: usize) -> Summary {
                 peak_normal_force_n: finite_or_zero(at(&l.peak_normal_n)),
                 stroke_m: finite_or_zero(at(&l.stroke_m)),
                 absorbed_j: finite_or_zero(at(&l.absorbed_j)),
+                peak_axial_force_n: finite_or_zero(at(&l.peak_axial_n)),
+                peak_axial_force_s: time(at(&l.peak_axial_s)),
+                peak_side_force_n: finite_or_zero(at(&l.peak_side_squared).sqrt()),
+                peak_side_force_s: time(at(&l.peak_side_s)),
+                stroke_margin_m: None,
+                bottomed: false,
             })
             .collect(),
         control: None,
-    }
+        limits_broken: None,
+    };
+    summary.judge(model);
+    summary
 }
 
 /// The truth lane `i`'s control loop reads (`contact`: a footpad of the lane touched in
@@ -243,7 +254,7 @@ mod tests {
             poison(&mut block, lane);
             let decided = K::advance(&params, &mut block, 1).bits;
             assert_eq!(decided, 1 << lane, "{what}: only the poisoned lane ends");
-            let s = lane_summary(&block, lane);
+            let s = lane_summary(&model, &block, lane);
             assert_eq!(s.outcome, Outcome::Diverged, "{what}");
             let mut numbers = vec![
                 s.decided_s,
@@ -256,7 +267,14 @@ mod tests {
             ];
             numbers.extend(s.first_contact_s);
             for l in &s.legs {
-                numbers.extend([l.peak_normal_force_n, l.stroke_m, l.absorbed_j]);
+                numbers.extend([
+                    l.peak_normal_force_n,
+                    l.stroke_m,
+                    l.absorbed_j,
+                    l.peak_axial_force_n,
+                    l.peak_side_force_n,
+                ]);
+                numbers.extend(l.peak_axial_force_s.into_iter().chain(l.peak_side_force_s));
             }
             assert!(
                 numbers.iter().all(|x| x.is_finite()),

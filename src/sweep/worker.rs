@@ -211,7 +211,7 @@ impl<K: Kernel> Worker<K> {
                         if sample.index < feed.window_end {
                             feed.outstanding.fetch_sub(1, Ordering::Relaxed);
                         }
-                        let mut summary = lane_summary(&self.block, i);
+                        let mut summary = lane_summary(model, &self.block, i);
                         if let (Some(m), Some(c)) = (&model.control, &mut self.control[i]) {
                             let left = self.block.thrust.event_in_s.lane(i);
                             summary.control = Some(Box::new(c.finish(m, left)));

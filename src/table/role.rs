@@ -111,7 +111,7 @@ pub(super) fn role(
 /// control loop); `sample` and `sample_seed` have roles of their own (`role`), and so have
 /// the control laws' parameters, inputs among the control columns.
 pub(super) fn is_result_column(name: &str) -> bool {
-    const RESULTS: [&str; 11] = [
+    const RESULTS: [&str; 13] = [
         "outcome",
         "decided_s",
         "steps",
@@ -123,11 +123,23 @@ pub(super) fn is_result_column(name: &str) -> bool {
         "bounces",
         "first_contact_s",
         "max_penetration_m",
+        "legs_bottomed",
+        "limits_broken",
+    ];
+    const LEG_RESULTS: [&str; 9] = [
+        "_peak_normal_force_n",
+        "_stroke_m",
+        "_absorbed_j",
+        "_peak_axial_force_n",
+        "_peak_axial_force_s",
+        "_peak_side_force_n",
+        "_peak_side_force_s",
+        "_stroke_margin_m",
+        "_bottomed",
     ];
     let leg = name.strip_prefix("leg").is_some_and(|rest| {
         let digits = rest.chars().take_while(char::is_ascii_digit).count();
-        digits > 0
-            && ["_peak_normal_force_n", "_stroke_m", "_absorbed_j"].contains(&&rest[digits..])
+        digits > 0 && LEG_RESULTS.contains(&&rest[digits..])
     });
     RESULTS.contains(&name)
         || leg
@@ -146,6 +158,8 @@ mod tests {
             "outcome",
             "leg3_stroke_m",
             "leg12_absorbed_j",
+            "leg1_bottomed",
+            "limits_broken",
             "propellant_kg",
         ] {
             assert!(is_result_column(name), "{name}");

@@ -1,9 +1,13 @@
 //! Rows of a sweep as one record batch of its schema, column by column.
 
+use super::schema::LIMITS_COLUMN;
 use crate::control::ControlSummary;
+use crate::reference::outcome::LegSummary;
 use crate::scenario::INPUT_FIELDS;
 use crate::sweep::Row;
-use arrow_array::builder::{Float64Builder, StringBuilder, UInt32Builder, UInt64Builder};
+use arrow_array::builder::{
+    BooleanBuilder, Float64Builder, StringBuilder, UInt32Builder, UInt64Builder,
+};
 use arrow_array::{ArrayRef, RecordBatch};
 use arrow_schema::SchemaRef;
 use std::sync::Arc;
@@ -73,6 +77,26 @@ fn touchdown_columns(rows: &[Row], cols: &mut Vec<ArrayRef>) {
     cols.push(Arc::new(leg.finish()));
 }
 
+/// Leg `k`'s strut columns (`schema::STRUT_COLUMNS`), into `cols`.
+fn strut_columns(rows: &[Row], k: usize, cols: &mut Vec<ArrayRef>) {
+    let leg = |r: &Row| r.summary.legs[k];
+    let options: [fn(&LegSummary) -> Option<f64>; 5] = [
+        |l| Some(l.peak_axial_force_n),
+        |l| l.peak_axial_force_s,
+        |l| Some(l.peak_side_force_n),
+        |l| l.peak_side_force_s,
+        |l| l.stroke_margin_m,
+    ];
+    for get in options {
+        let mut b = Float64Builder::with_capacity(rows.len());
+        rows.iter().for_each(|r| b.append_option(get(&leg(r))));
+        cols.push(Arc::new(b.finish()));
+    }
+    let mut b = BooleanBuilder::with_capacity(rows.len());
+    rows.iter().for_each(|r| b.append_value(leg(r).bottomed));
+    cols.push(Arc::new(b.finish()));
+}
+
 /// A record batch of `rows` in `schema`, the columns passed through from a table of
 /// inputs (`kept`, last in the schema) as they are.
 pub fn batch(
@@ -126,12 +150,21 @@ pub fn batch(
         cols.push(f64s(&|r| r.summary.legs[k].peak_normal_force_n));
         cols.push(f64s(&|r| r.summary.legs[k].stroke_m));
         cols.push(f64s(&|r| r.summary.legs[k].absorbed_j));
+        strut_columns(rows, k, &mut cols);
     }
+    cols.push(u32s(&|r| r.summary.legs_bottomed()));
     let control = |r: &Row| r.summary.control.as_deref().copied().unwrap_or_default();
     let computed = schema.fields().len() - kept.len();
     for field in schema.fields()[..computed].iter().skip(cols.len()) {
         cols.push(match field.name().as_str() {
             "firings" => u32s(&|r| control(r).firings),
+            LIMITS_COLUMN => {
+                let mut b = StringBuilder::with_capacity(n, n * 8);
+                for r in rows {
+                    b.append_value(r.summary.limits_broken.unwrap_or_default().names());
+                }
+                Arc::new(b.finish())
+            }
             other if let Some(value) = control_value(other) => f64s(&|r| value(&control(r))),
             other => match crate::scenario::Parameter::ALL
                 .iter()

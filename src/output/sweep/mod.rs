@@ -15,6 +15,7 @@ mod writer;
 pub use batch::{batch, control_value};
 pub use read::{SweepBatch, SweepFile, leg_count};
 pub use schema::{
-    CONTROL_COLUMNS, SHARD_KEYS, SweepInfo, control_columns, parameter_columns, schema,
+    CONTROL_COLUMNS, LIMITS_COLUMN, SHARD_KEYS, SweepInfo, control_columns, has_limits,
+    parameter_columns, schema,
 };
 pub use writer::{Rebatcher, SweepWriter};

@@ -115,6 +115,11 @@ impl SweepBatch<'_> {
         self.typed(name, "UInt32")
     }
 
+    /// A Utf8 column (`limits_broken`), by name.
+    pub fn strs(&self, name: &str) -> anyhow::Result<&StringArray> {
+        self.typed(name, "Utf8")
+    }
+
     /// The Float64 columns `leg{k}_{what}` of legs 0 to `legs - 1`.
     pub fn per_leg(&self, legs: usize, what: &str) -> anyhow::Result<Vec<&Float64Array>> {
         (0..legs)

@@ -185,6 +185,21 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
     let mut fields = input_fields();
     fields.extend(result_fields(!info.control.is_empty()));
     fields.extend(leg_fields(legs));
+    fields.push(f(
+        "legs_bottomed",
+        DataType::UInt32,
+        "1",
+        "legs whose damper used up its usable stroke (0 without dampers)",
+    ));
+    if has_limits(info.scenario_toml) {
+        fields.push(f(
+            LIMITS_COLUMN,
+            DataType::Utf8,
+            "1",
+            "the scenario's [limits] the sample broke, among axial_force, side_force, \
+             acceleration and stroke_margin in that order, joined by commas (empty: none)",
+        ));
+    }
     for (name, unit, description, _) in CONTROL_COLUMNS {
         if info.control.contains(&name) {
             let t = if name == "firings" {
@@ -405,10 +420,62 @@ fn touchdown_fields() -> impl Iterator<Item = Field> {
     })
 }
 
+/// The column of the limits a sample broke, in a sweep of a scenario with `[limits]`.
+pub const LIMITS_COLUMN: &str = "limits_broken";
+
+/// Whether the scenario text gives `[limits]` (its sweep has `LIMITS_COLUMN`).
+#[must_use]
+pub fn has_limits(scenario_toml: &str) -> bool {
+    scenario_toml
+        .parse::<toml::Table>()
+        .is_ok_and(|t| t.contains_key("limits"))
+}
+
+/// Each leg's strut columns (MODEL.md section 9) after its first three: name, type, unit,
+/// description; the times and the margin are null where they have no value.
+const STRUT_COLUMNS: [(&str, DataType, &str, &str); 6] = [
+    (
+        "peak_axial_force_n",
+        DataType::Float64,
+        "N",
+        "peak axial strut load: the footpad's force along the strut, compressive positive",
+    ),
+    (
+        "peak_axial_force_s",
+        DataType::Float64,
+        "s",
+        "start of the step of the peak axial load (null: never loaded)",
+    ),
+    (
+        "peak_side_force_n",
+        DataType::Float64,
+        "N",
+        "peak side load: the footpad's force across the strut",
+    ),
+    (
+        "peak_side_force_s",
+        DataType::Float64,
+        "s",
+        "start of the step of the peak side load (null: never loaded)",
+    ),
+    (
+        "stroke_margin_m",
+        DataType::Float64,
+        "m",
+        "usable damper stroke less the final stroke (0: bottomed; null without dampers)",
+    ),
+    (
+        "bottomed",
+        DataType::Boolean,
+        "1",
+        "the damper used up its usable stroke",
+    ),
+];
+
 /// The fields of each leg's results.
 fn leg_fields(legs: usize) -> Vec<Field> {
     let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);
-    let mut fields = Vec::with_capacity(3 * legs);
+    let mut fields = Vec::with_capacity((3 + STRUT_COLUMNS.len()) * legs);
     for k in 0..legs {
         fields.push(f(
             &format!("leg{k}_peak_normal_force_n"),
@@ -428,6 +495,10 @@ fn leg_fields(legs: usize) -> Vec<Field> {
             "J",
             "energy absorbed by the damper",
         ));
+        for (name, t, unit, description) in STRUT_COLUMNS {
+            let nullable = name.ends_with("_s") || name == "stroke_margin_m";
+            fields.push(f(&format!("leg{k}_{name}"), t, unit, description).with_nullable(nullable));
+        }
     }
     fields
 }
