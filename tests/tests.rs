@@ -22,6 +22,7 @@ mod paired_sweeps;
 mod parameters;
 mod plot;
 mod python_example;
+mod release_state;
 mod report;
 mod scenario_fuzz;
 mod scenarios;

@@ -79,6 +79,10 @@ pub struct ControlSummary {
     pub release_altitude_m: f64,
     /// True CG velocity in I at the release, m/s.
     pub release_velocity_m_s: [f64; 3],
+    /// True body rates in B at the release, rad/s.
+    pub release_rate_rad_s: [f64; 3],
+    /// True `X_B` and `Z_B` in I at the release.
+    pub release_axes: [[f64; 3]; 2],
     /// The sample's drawn descent (none without one).
     pub descent: Option<DescentDraw>,
 }
@@ -228,6 +232,8 @@ impl LaneControl {
                 release_time_s: nan,
                 release_altitude_m: nan,
                 release_velocity_m_s: [nan; 3],
+                release_rate_rad_s: [nan; 3],
+                release_axes: [[nan; 3]; 2],
                 descent: m.descent_draw(sample),
                 ..ControlSummary::default()
             },
@@ -400,12 +406,17 @@ impl LaneControl {
             if height <= self.release_height_m && approach.abs() < d.release_speed_m_s {
                 self.phase = Phase::Fall;
                 // The release ends the burn at once: its commands still in the latency
-                // queue are dropped, so the free fall starts from the state recorded here.
+                // queue are dropped, and so is the rounding its thrusters carried (owed
+                // to the burn's commands, it would fire after the release), so the free
+                // fall starts from the state recorded here.
                 self.queue.clear();
+                self.carry_s = [0.0; MAX_THRUSTERS];
                 let s = &mut self.summary;
                 s.release_time_s = truth.t_s;
                 s.release_altitude_m = truth.normal.dot(truth.position_m) - m.footpad_depth_m;
                 s.release_velocity_m_s = truth.velocity_m_s.to_array();
+                s.release_rate_rad_s = truth.rate_rad_s.to_array();
+                s.release_axes = [DVec3::X, DVec3::Z].map(|a| (truth.attitude * a).to_array());
             }
         }
         if matches!(self.phase, Phase::Descent | Phase::Fall) && sensed.contact {

@@ -3,6 +3,7 @@
 use super::schema::LIMITS_COLUMN;
 use crate::control::ControlSummary;
 use crate::reference::outcome::LegSummary;
+use crate::reference::touchdown::{Met, Touchdown};
 use crate::scenario::INPUT_FIELDS;
 use crate::sweep::Row;
 use arrow_array::builder::{
@@ -10,6 +11,7 @@ use arrow_array::builder::{
 };
 use arrow_array::{ArrayRef, RecordBatch};
 use arrow_schema::SchemaRef;
+use glam::DVec3;
 use std::sync::Arc;
 
 /// The value of the control column `name` (`CONTROL_COLUMNS`) in a lander's summary of its
@@ -46,7 +48,6 @@ pub fn control_value(name: &str) -> Option<fn(&ControlSummary) -> f64> {
 /// The columns of `TOUCHDOWN_COLUMNS` (null where a lander never touched, and the
 /// azimuths where its speed along the surface was 0), into `cols`.
 fn touchdown_columns(rows: &[Row], cols: &mut Vec<ArrayRef>) {
-    use crate::reference::touchdown::Touchdown;
     let values: [fn(&Touchdown) -> f64; 8] = [
         |t| t.normal_speed_m_s,
         |t| t.tangential_speed_m_s,
@@ -75,6 +76,51 @@ fn touchdown_columns(rows: &[Row], cols: &mut Vec<ArrayRef>) {
         leg.append_option(r.summary.touchdown.map(|t| t.first_leg));
     }
     cols.push(Arc::new(leg.finish()));
+}
+
+/// One quantity of a touchdown state.
+type StateValue = fn(&Touchdown) -> f64;
+
+/// The release columns of the touchdown state (`release_normal_speed_m_s` ...), in the
+/// order of `TOUCHDOWN_COLUMNS`: the state a descent released the lander in, in the frame
+/// of its surface plane, as the touchdown state is at the first contact.
+const RELEASE_STATE: [(&str, StateValue); 8] = [
+    ("release_normal_speed_m_s", |t| t.normal_speed_m_s),
+    ("release_tangential_speed_m_s", |t| t.tangential_speed_m_s),
+    ("release_tangential_azimuth_deg", |t| {
+        t.tangential_azimuth_deg
+    }),
+    ("release_tangential_azimuth_body_deg", |t| {
+        t.tangential_azimuth_body_deg
+    }),
+    ("release_tilt_deg", |t| t.tilt_deg),
+    ("release_rate_x_deg_s", |t| t.rate_deg_s[0]),
+    ("release_rate_y_deg_s", |t| t.rate_deg_s[1]),
+    ("release_rate_z_deg_s", |t| t.rate_deg_s[2]),
+];
+
+/// The state a descent released the lander of `r` in, on its surface plane (`None`: no
+/// descent, or contact came first).
+fn release_state(r: &Row) -> Option<Touchdown> {
+    let c = r.summary.control.as_deref()?;
+    if c.release_time_s.is_nan() {
+        return None;
+    }
+    let surface = crate::slope::Surface::of(&r.sample);
+    let v = DVec3::from_array;
+    let met = Met {
+        velocity_m_s: v(c.release_velocity_m_s),
+        rate_rad_s: v(c.release_rate_rad_s),
+        x_body: v(c.release_axes[0]),
+        z_body: v(c.release_axes[1]),
+        first_leg: 0,
+    };
+    Some(Touchdown::of(
+        &met,
+        surface.normal,
+        surface.tangent_u,
+        surface.tangent_v,
+    ))
 }
 
 /// Leg `k`'s strut columns (`schema::STRUT_COLUMNS`), into `cols`.
@@ -166,6 +212,9 @@ pub fn batch(
                 Arc::new(b.finish())
             }
             other if let Some(value) = control_value(other) => f64s(&|r| value(&control(r))),
+            other if let Some((_, value)) = RELEASE_STATE.iter().find(|c| c.0 == other) => {
+                f64s(&|r| release_state(r).as_ref().map_or(f64::NAN, value))
+            }
             other => match crate::scenario::Parameter::ALL
                 .iter()
                 .find(|p| p.name() == other)

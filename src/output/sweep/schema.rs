@@ -44,7 +44,7 @@ pub fn parameter_columns(scenario: &crate::scenario::Scenario) -> Vec<&'static s
 
 /// The columns of what a control loop did, and of its sampled law parameters: name, unit,
 /// description, and the law a parameter belongs to (empty: every control loop).
-pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 18] = [
+pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 26] = [
     (
         "propellant_kg",
         "kg",
@@ -153,6 +153,56 @@ pub const CONTROL_COLUMNS: [(&str, &str, &str, &str); 18] = [
         "release_vz_m_s",
         "m/s",
         "true CG velocity at release, Z_I",
+        "descent",
+    ),
+    (
+        "release_normal_speed_m_s",
+        "m/s",
+        "the touchdown state's columns at the release (NaN: contact came first): speed \
+         towards the surface plane, -n . v",
+        "descent",
+    ),
+    (
+        "release_tangential_speed_m_s",
+        "m/s",
+        "speed along the surface plane at the release",
+        "descent",
+    ),
+    (
+        "release_tangential_azimuth_deg",
+        "deg",
+        "direction of the velocity along the surface at the release, from downhill, \
+         positive towards n x downhill (NaN where that speed is 0)",
+        "descent",
+    ),
+    (
+        "release_tangential_azimuth_body_deg",
+        "deg",
+        "the same from X_B projected on the surface (relative to the legs)",
+        "descent",
+    ),
+    (
+        "release_tilt_deg",
+        "deg",
+        "tilt of Z_B from the surface normal at the release",
+        "descent",
+    ),
+    (
+        "release_rate_x_deg_s",
+        "deg/s",
+        "body rate about X_B at the release",
+        "descent",
+    ),
+    (
+        "release_rate_y_deg_s",
+        "deg/s",
+        "body rate about Y_B at the release",
+        "descent",
+    ),
+    (
+        "release_rate_z_deg_s",
+        "deg/s",
+        "body rate about Z_B at the release",
         "descent",
     ),
 ];
