@@ -10,6 +10,7 @@ mod common;
 mod cpus;
 mod flown;
 mod hostile_files;
+mod initial_state;
 mod inputs;
 mod interrupt;
 mod lander;
