@@ -3,6 +3,7 @@
 mod agreement;
 mod animate;
 mod boundary;
+mod boundary_input;
 mod bounded_memory;
 mod cli;
 mod collisions;
