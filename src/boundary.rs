@@ -1,5 +1,7 @@
 //! `touchdown boundary`: the allowable slope of each azimuth sector (`stats::allowable_slope`)
-//! found directly, by adaptive sampling, with its 95 % interval.
+//! found directly, by adaptive sampling, with its 95 % interval; or, the same way, the
+//! allowable value of another drawn input (`--input`: the largest value with at least 99 %
+//! of the samples at or below it stable), "slope" below standing for that input.
 //!
 //! The allowable slope is cumulative: it is read from the samples at or below a slope, over
 //! the scenario's slope distribution. A uniform sweep spends most of its samples where they
@@ -15,14 +17,16 @@
 
 use crate::scenario::Dist;
 use crate::scenario::Sample;
+use crate::scenario::stream_name;
 use crate::stats::{Allowable, MIN_SAMPLES, allowable_of_counts};
 
 /// The samples of one sector from one round: slopes drawn from the scenario's slope
-/// distribution conditioned on `[slope_min, upper_deg]`, and whether each was stable.
+/// distribution conditioned on `[slope_min, upper]`, and whether each was stable.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Round {
-    /// The upper end of the slopes this round drew, deg (the lower end is `slope_min`).
-    pub upper_deg: f64,
+    /// The upper end of the slopes this round drew, in the input's unit (deg for the slope;
+    /// the lower end is `slope_min`).
+    pub upper: f64,
     /// Each sample's slope, deg, and whether its outcome was stable.
     pub samples: Vec<(f64, bool)>,
 }
@@ -46,7 +50,7 @@ pub fn pooled_allowable(rounds: &[Round]) -> Allowable {
     all.sort_by(|a, b| a.0.total_cmp(&b.0));
     // Rounds leave the pool, lowest upper slope first, as `s` passes their upper slope.
     let mut by_upper: Vec<usize> = (0..rounds.len()).collect();
-    by_upper.sort_by(|&a, &b| rounds[a].upper_deg.total_cmp(&rounds[b].upper_deg));
+    by_upper.sort_by(|&a, &b| rounds[a].upper.total_cmp(&rounds[b].upper));
     let mut left = by_upper.iter().peekable();
     let mut counts = vec![(0u64, 0u64); rounds.len()];
     let mut pooled = vec![true; rounds.len()];
@@ -56,7 +60,7 @@ pub fn pooled_allowable(rounds: &[Round]) -> Allowable {
     while i < all.len() {
         let s = all[i].0;
         while let Some(&&r) = left.peek() {
-            if rounds[r].upper_deg >= s {
+            if rounds[r].upper >= s {
                 break;
             }
             pooled[r] = false;
@@ -97,15 +101,15 @@ pub enum Stop {
 }
 
 impl Stop {
-    /// The report's cell.
+    /// The report's cell, for a search of `what` ("slope", "value").
     #[must_use]
-    pub fn cell(self) -> &'static str {
+    pub fn cell(self, what: &str) -> String {
         match self {
-            Stop::Tolerance => "interval within tolerance",
-            Stop::WholeRange => "allowable up to the top of the slope range",
-            Stop::NoSlope => "no allowable slope",
-            Stop::SampleLimit => "sample limit",
-            Stop::Unreached => "no samples in this sector",
+            Stop::Tolerance => "interval within tolerance".to_string(),
+            Stop::WholeRange => format!("allowable up to the top of the {what} range"),
+            Stop::NoSlope => format!("no allowable {what}"),
+            Stop::SampleLimit => "sample limit".to_string(),
+            Stop::Unreached => "no samples in this sector".to_string(),
         }
     }
 }
@@ -184,13 +188,17 @@ fn conditioned(dist: Dist, upper: f64) -> Dist {
     }
 }
 
-/// `sample` with its slope redrawn from `dist` conditioned on `[min, upper]`, from the
-/// sample's own uniform of its slope stream: the inverse CDF of `U * F(upper)`. Everything
-/// else stays. At the top of the range it is the sample's own slope.
+/// `sample` with its value `k` (`Sample::values`: the slope is 0) redrawn from `dist`
+/// conditioned on `[min, upper]`, from the sample's own uniform of that value's stream
+/// (`stream_name`): the inverse CDF of `U * F(upper)`. Everything else stays. At the top of
+/// the range it is the sample's own value.
 #[must_use]
-pub fn with_slope_below(mut sample: Sample, dist: Dist, upper: f64) -> Sample {
-    let u = crate::rng::uniform_open01(&mut crate::rng::stream(sample.seed, "slope_deg"));
-    sample.inputs.slope_deg = crate::dist::quantile(&conditioned(dist, upper), u, 0);
+pub fn with_value_below(mut sample: Sample, k: usize, dist: Dist, upper: f64) -> Sample {
+    let mut stream = crate::rng::stream(sample.seed, stream_name(k));
+    let u = crate::rng::uniform_open01(&mut stream);
+    let mut values = sample.values();
+    values[k] = crate::dist::quantile(&conditioned(dist, upper), u, 0);
+    sample.set_values(values);
     sample
 }
 
@@ -214,7 +222,7 @@ mod tests {
                 })
                 .collect();
             let round = Round {
-                upper_deg: 45.0,
+                upper: 45.0,
                 samples: samples.clone(),
             };
             assert_eq!(
@@ -224,7 +232,7 @@ mod tests {
             );
         }
         let few = Round {
-            upper_deg: 45.0,
+            upper: 45.0,
             samples: vec![(1.0, true); 50],
         };
         assert_eq!(pooled_allowable(&[few]), Allowable::TooFewSamples(50));
@@ -235,11 +243,11 @@ mod tests {
         // Round 0 over 0-40 deg, unstable from 10 deg on; round 1 below 12 deg, all stable:
         // at s <= 12 both count, past 12 round 1 leaves the pool.
         let round0 = Round {
-            upper_deg: 40.0,
+            upper: 40.0,
             samples: (0..400).map(|i| (f64::from(i) / 10.0, i < 100)).collect(),
         };
         let round1 = Round {
-            upper_deg: 12.0,
+            upper: 12.0,
             samples: (0..1200).map(|i| (f64::from(i) / 100.0, true)).collect(),
         };
         let pooled = pooled_allowable(&[round0.clone(), round1.clone()]);
@@ -281,10 +289,7 @@ mod tests {
                     (s, crate::rng::uniform01(&mut rng) < p_stable(s))
                 })
                 .collect();
-            rounds.push(Round {
-                upper_deg: upper,
-                samples,
-            });
+            rounds.push(Round { upper, samples });
             used += 2000;
             allowable = pooled_allowable(&rounds);
             if let Some(stop) = stop_rule(allowable, (0.0, 45.0), 0.5, upper, (used, 400_000)) {
@@ -356,8 +361,8 @@ mod tests {
             scenario.inputs.slope_deg = dist;
             for i in 0..200 {
                 let s = crate::sampling::sample(&scenario, i);
-                assert_eq!(with_slope_below(s, dist, dist.support().1), s);
-                let below = with_slope_below(s, dist, 12.0);
+                assert_eq!(with_value_below(s, 0, dist, dist.support().1), s);
+                let below = with_value_below(s, 0, dist, 12.0);
                 assert!(below.inputs.slope_deg <= 12.0, "{below:?}");
                 assert_eq!(
                     (below.seed, below.inputs.yaw_deg, below.parameters),

@@ -13,8 +13,8 @@
 use crate::dist::quantile;
 use crate::rng::{sample_seed, stream, uniform_open01, uniform01};
 use crate::scenario::{
-    Design, Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETERS, Sample, Scenario, VALUES,
-    design_inputs, design_position, grid_indices, stream_name, value_dists,
+    Design, Dist, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETERS, STATE_VALUES, Sample, Scenario,
+    VALUES, design_inputs, design_position, grid_indices, stream_name, value_dists,
 };
 use rand_core::RngCore;
 
@@ -120,6 +120,7 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
         terrain_tile,
         terrain_offset_m,
         law: [0.0; LAW_PARAMETERS],
+        touchdown: [0.0; STATE_VALUES],
     };
     s.set_values(values);
     s

@@ -20,6 +20,7 @@ pub(crate) fn sample_of(inputs: Inputs<f64>) -> Sample {
         terrain_tile: 0,
         terrain_offset_m: [0.0; 2],
         law: [0.0; touchdown::scenario::LAW_PARAMETERS],
+        touchdown: [0.0; touchdown::scenario::STATE_VALUES],
     }
 }
 

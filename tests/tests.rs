@@ -3,6 +3,7 @@
 mod agreement;
 mod animate;
 mod boundary;
+mod boundary_input;
 mod bounded_memory;
 mod cli;
 mod collisions;
@@ -11,6 +12,7 @@ mod cpus;
 mod exceedance;
 mod flown;
 mod hostile_files;
+mod initial_state;
 mod inputs;
 mod interrupt;
 mod lander;

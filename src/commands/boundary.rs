@@ -1,12 +1,12 @@
 //! `touchdown boundary`: the allowable slope of each azimuth sector found directly, by
-//! adaptive sampling (`run::boundary`), and told as Markdown.
+//! adaptive sampling (`run::boundary`), and told as Markdown; or the allowable value of
+//! another drawn input (`--input`).
 
 use super::flags::{Threads, parse_count, parse_seed};
 use super::print::print_out;
-use crate::boundary::Stop;
 use crate::run::boundary::{Search, Settings, search};
-use crate::scenario::Design;
-use crate::stats::SECTOR_DEG;
+use crate::scenario::{Design, Dist, Scenario, VALUES, value_dists, value_name, value_unit};
+use crate::stats::{Allowable, SECTOR_DEG};
 use anyhow::bail;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -21,7 +21,13 @@ pub struct BoundaryArgs {
     /// Seed (overrides the scenario's `seed`).
     #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
-    /// A sector is finished once its 95 % interval is at most this wide, deg.
+    /// The drawn input to search along (a column of the sweep: an input, a parameter, a
+    /// control-law parameter or `initial_*`), uniform or normal: its largest value with at
+    /// least 99 % of the samples at or below it stable, per sector.
+    #[arg(long, value_name = "NAME", default_value = "slope_deg")]
+    pub input: String,
+    /// A sector is finished once its 95 % interval is at most this wide, in the input's
+    /// unit (deg for the slope).
     #[arg(
         long,
         value_name = "DEG",
@@ -49,8 +55,11 @@ pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     if !(args.tolerance > 0.0 && args.tolerance.is_finite()) {
         bail!(
-            "--tolerance {}: must be a width in deg above 0",
-            args.tolerance
+            "--tolerance {}: must be a width in {} above 0",
+            args.tolerance,
+            (0..VALUES)
+                .find(|&k| value_name(k) == args.input)
+                .map_or("the input's unit", value_unit)
         );
     }
     if args.batch == 0 {
@@ -61,7 +70,9 @@ pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
     }
     let (scenario, _) = crate::run::load_scenario(args.scenario.as_ref(), args.seed)?;
     let seed = scenario.seed;
+    let input = input_of(&scenario, &args.input)?;
     let settings = Settings {
+        input,
         tolerance: args.tolerance,
         batch: args.batch,
         max_samples_per_sector: args.max_samples_per_sector,
@@ -74,17 +85,40 @@ pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
     )
 }
 
+/// The position in `Sample::values` of the input named `name`, refused (naming those the
+/// scenario draws uniform or normal) where no value has that name.
+fn input_of(scenario: &Scenario, name: &str) -> anyhow::Result<usize> {
+    if let Some(k) = (0..VALUES).find(|&k| value_name(k) == name) {
+        return Ok(k);
+    }
+    let dists = value_dists(scenario);
+    let drawn: Vec<&str> = (0..VALUES)
+        .filter(|&k| matches!(dists[k], Dist::Uniform { .. } | Dist::Normal { .. }))
+        .map(value_name)
+        .collect();
+    bail!(
+        "--input {name}: no such input; the scenario draws {} uniform or normal",
+        if drawn.is_empty() {
+            "none".to_string()
+        } else {
+            drawn.join(", ")
+        }
+    )
+}
+
 /// The search's report: what ran, and the allowable slope of each sector.
 fn markdown(args: &BoundaryArgs, seed: u64, found: &Search, started: std::time::Instant) -> String {
     let name = args.scenario.as_ref().map_or_else(
         || "the default scenario".to_string(),
         |p| p.display().to_string(),
     );
+    let slope = found.input == 0;
+    let (input, unit) = (value_name(found.input), value_unit(found.input));
     let mut t = String::new();
     let _ = writeln!(t, "# touchdown boundary: {name}\n");
     let _ = writeln!(
         t,
-        "Seed {}, slope_deg = {}, tolerance {} deg, batch {} per sector, at most {} samples \
+        "Seed {}, {input} = {}, tolerance {} {unit}, batch {} per sector, at most {} samples \
          per sector{}. {} samples simulated ({} candidates drawn) in \
          {:.1} s.\n",
         seed,
@@ -101,29 +135,69 @@ fn markdown(args: &BoundaryArgs, seed: u64, found: &Search, started: std::time::
         found.candidates,
         started.elapsed().as_secs_f64()
     );
-    let _ = writeln!(
-        t,
-        "## Allowable slope\n\nAs `touchdown report` defines it, per sector of downhill \
-         azimuth relative to the lander; each round drew a sector's slopes below the upper \
-         end of its interval so far, and the interval pools all its rounds.\n"
-    );
-    let _ = writeln!(
-        t,
-        "| azimuth sector | samples | rounds | allowable slope | 95 % interval | stopped |\n\
-         |---|---:|---:|---:|---:|---|"
-    );
-    for (k, s) in found.sectors.iter().enumerate() {
+    if slope {
         let _ = writeln!(
             t,
-            "| {:.0}–{:.0} deg | {} | {} | {} | {} | {} |",
+            "## Allowable slope\n\nAs `touchdown report` defines it, per sector of downhill \
+             azimuth relative to the lander; each round drew a sector's slopes below the upper \
+             end of its interval so far, and the interval pools all its rounds.\n"
+        );
+    } else {
+        let _ = writeln!(
+            t,
+            "## Allowable {input}\n\nThe largest {input} with at least 99 % of the samples at \
+             or below it stable (the rule of `touchdown report`'s allowable slope), per sector \
+             of downhill azimuth relative to the lander, in {unit}; each round drew a sector's \
+             {input} below the upper end of its interval so far, and the interval pools all its \
+             rounds.\n"
+        );
+    }
+    let what = if slope { "slope" } else { "value" };
+    let _ = writeln!(
+        t,
+        "| azimuth sector | samples | rounds | allowable {what} | 95 % interval | stopped |\n\
+         |---|---:|---:|---:|---:|---|"
+    );
+    let min = found.dist.support().0;
+    for (k, s) in found.sectors.iter().enumerate() {
+        let (cell, interval) = if slope {
+            (s.allowable.cell(), s.allowable.interval_cell())
+        } else {
+            value_cells(s.allowable, min, unit)
+        };
+        let _ = writeln!(
+            t,
+            "| {:.0}–{:.0} deg | {} | {} | {cell} | {interval} | {} |",
             k as f64 * SECTOR_DEG,
             (k + 1) as f64 * SECTOR_DEG,
             s.used,
             s.rounds.len(),
-            s.allowable.cell(),
-            s.allowable.interval_cell(),
-            s.stop.map_or("", Stop::cell)
+            s.stop.map_or(String::new(), |stop| stop.cell(what))
         );
     }
     t
+}
+
+/// The cells of a sector's allowable value of an input other than the slope, and its
+/// interval, in `unit` (its range starting at `min`), as `Allowable::cell` and
+/// `interval_cell` give the slope's.
+fn value_cells(allowable: Allowable, min: f64, unit: &str) -> (String, String) {
+    match allowable {
+        Allowable::TooFewSamples(_) | Allowable::NoSlope { .. } => {
+            let cell = allowable.cell().replace("no slope", "no value");
+            let interval = match allowable {
+                Allowable::NoSlope { below_deg } => format!("{min:.3}–{below_deg:.3} {unit}"),
+                _ => allowable.interval_cell(),
+            };
+            (cell, interval)
+        }
+        Allowable::Slope {
+            slope_deg,
+            low_deg,
+            high_deg,
+        } => (
+            format!("{slope_deg:.3} {unit}"),
+            format!("{:.3}–{high_deg:.3} {unit}", low_deg.max(min)),
+        ),
+    }
 }

@@ -95,6 +95,20 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
             t.push_str(&format!("  {name:<24} {value:>12.6} {unit} (drawn)\n"));
         }
     }
+    if let Some(state) = scenario.initial.touchdown {
+        for (((name, unit), dist), value) in crate::scenario::INITIAL_FIELDS
+            .iter()
+            .zip(state)
+            .zip(sample.touchdown)
+        {
+            let drawn = if matches!(dist, crate::scenario::Dist::Fixed(_)) {
+                ""
+            } else {
+                " (drawn)"
+            };
+            t.push_str(&format!("  {name:<24} {value:>12.6} {unit}{drawn}\n"));
+        }
+    }
     if scenario.rms_height_max_m() > 0.0 {
         t.push_str(&format!(
             "  {:<24} {:>12} (offset {:.3} m, {:.3} m)\n",

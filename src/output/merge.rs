@@ -69,6 +69,7 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
         .collect();
     let parameters: Vec<&'static str> = crate::scenario::PARAMETER_FIELDS
         .iter()
+        .chain(&crate::scenario::INITIAL_FIELDS)
         .map(|c| c.0)
         .filter(|name| files[0].schema.field_with_name(name).is_ok())
         .collect();

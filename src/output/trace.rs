@@ -572,5 +572,17 @@ fn metadata(info: &TraceInfo<'_>, every: u64) -> BTreeMap<String, String> {
     {
         meta.insert(format!("touchdown.parameter.{name}"), value.to_string());
     }
+    // The touchdown state a scenario gives (a table's values included), read back as the
+    // values after the parameters are (`scene::trace`).
+    if crate::scenario::Scenario::from_toml(info.scenario_toml)
+        .is_ok_and(|s| s.initial.touchdown.is_some())
+    {
+        for ((name, _), value) in crate::scenario::INITIAL_FIELDS
+            .iter()
+            .zip(info.sample.touchdown)
+        {
+            meta.insert(format!("touchdown.parameter.{name}"), value.to_string());
+        }
+    }
     meta
 }

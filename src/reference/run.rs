@@ -17,7 +17,8 @@ use glam::{DQuat, DVec3};
 /// `sqrt(2 g0 h)` plus the velocity errors, and the CG placed on the slope normal through
 /// the origin so that the lowest footpad is `clearance_m` above the terrain beneath it.
 /// Or, for a start at the release, the same `h` higher along `Z_I` with only the velocity
-/// errors: the stepped fall brings it there.
+/// errors: the stepped fall brings it there. Or, with the touchdown state given
+/// (`Start::State`), the velocity `-vn n + vt (cos a u + sin a v)` in the surface's frame.
 #[must_use]
 pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State {
     let x = &sample.inputs;
@@ -40,12 +41,20 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
         (Start::Descent, Some(d)) => (d.start_speed_m_s, d.start_altitude_m),
         _ => ((2.0 * model.gravity_m_s2 * x.release_height_m).sqrt(), 0.0),
     };
-    let velocity = reference
-        * DVec3::new(
-            x.velocity_error_x_m_s,
-            x.velocity_error_y_m_s,
-            x.velocity_error_z_m_s - fall,
-        );
+    let velocity = if model.start == Start::State {
+        // The touchdown state given: towards the surface at `vn`, along it at `vt` in the
+        // direction `a` from downhill `u` towards `v` (MODEL.md section 8).
+        let [vn, vt, a] = sample.touchdown;
+        let (sa, ca) = libm::sincos(a.to_radians());
+        -vn * surface.normal + vt * (ca * surface.tangent_u + sa * surface.tangent_v)
+    } else {
+        reference
+            * DVec3::new(
+                x.velocity_error_x_m_s,
+                x.velocity_error_y_m_s,
+                x.velocity_error_z_m_s - fall,
+            )
+    };
     let rate = DVec3::new(x.rate_x_deg_s, x.rate_y_deg_s, x.rate_z_deg_s) * (1.0f64).to_radians();
     // Height along the normal that puts the lowest footpad `clearance_m` above the terrain;
     // the terrain under a footpad does not change as the CG moves along the normal.

@@ -1,15 +1,15 @@
-//! The boundary search run: rounds of the scenario's own samples, their slopes drawn below
-//! each unfinished sector's interval so far (`boundary`'s rules), run through the kernels
-//! until every sector stops.
+//! The boundary search run: rounds of the scenario's own samples, their slopes (or the
+//! values of the input searched) drawn below each unfinished sector's interval so far
+//! (`boundary`'s rules), run through the kernels until every sector stops.
 
 use super::workers::{CHUNK, worker_pool};
-use crate::boundary::{Round, Stop, next_upper, pooled_allowable, stop_rule, with_slope_below};
+use crate::boundary::{Round, Stop, next_upper, pooled_allowable, stop_rule, with_value_below};
 use crate::reference::Model;
 use crate::reference::outcome::Outcome;
 use crate::sampling;
 use crate::scenario::InputTable;
 use crate::scenario::Sample;
-use crate::scenario::{Design, Dist, Scenario};
+use crate::scenario::{Design, Dist, Scenario, value_dists, value_key, value_name, value_unit};
 use crate::stats::{Allowable, SECTORS, relative_azimuth_deg, sector_of};
 use anyhow::bail;
 use std::sync::Arc;
@@ -18,7 +18,10 @@ use std::sync::atomic::AtomicUsize;
 /// The settings of a search (`touchdown boundary`'s flags, checked).
 #[derive(Debug, Clone, Copy)]
 pub struct Settings {
-    /// A sector is finished once its 95 % interval is at most this wide, deg.
+    /// The value searched (`Sample::values`; 0, the slope, by default).
+    pub input: usize,
+    /// A sector is finished once its 95 % interval is at most this wide, in the input's
+    /// unit (deg for the slope).
     pub tolerance: f64,
     /// Samples per unfinished sector per round.
     pub batch: u64,
@@ -36,7 +39,8 @@ pub struct Sector {
     pub rounds: Vec<Round>,
     /// Samples it has run, over all its rounds.
     pub used: u64,
-    /// Its allowable slope pooled over the rounds, with the 95 % interval.
+    /// Its allowable slope (value of the input) pooled over the rounds, with the 95 %
+    /// interval.
     pub allowable: Allowable,
     /// Why its search stopped; `None` while it goes on.
     pub stop: Option<Stop>,
@@ -50,10 +54,12 @@ pub struct Search {
     pub total: u64,
     /// Candidates drawn.
     pub candidates: u64,
-    /// The scenario's slope distribution.
+    /// The scenario's distribution of the input searched.
     pub dist: Dist,
     /// The scenario's design (the search draws independently).
     pub design: Design,
+    /// The value searched (`Settings::input`).
+    pub input: usize,
 }
 
 /// Searches the allowable slope of every sector of `scenario` on `threads` workers,
@@ -64,17 +70,24 @@ pub fn search(
     threads: Option<usize>,
     progress: bool,
 ) -> anyhow::Result<Search> {
-    let dist = slope_distribution(&scenario)?;
+    let k = settings.input;
+    let dist = input_distribution(&scenario, k)?;
     check_memory(settings)?;
     let range = dist.support();
     // A tolerance as wide as the range would end every sector's search before it began,
     // "allowable up to the top" whatever the samples say.
     if settings.tolerance >= range.1 - range.0 {
+        let (what, unit) = if k == 0 {
+            ("slope", value_unit(k))
+        } else {
+            ("value", value_unit(k))
+        };
         anyhow::bail!(
-            "--tolerance {}: less than the width of the slope range, {} deg \
-             (inputs.slope_deg from {} to {} deg), or every sector stops before it is searched",
+            "--tolerance {}: less than the width of the {what} range, {} {unit} \
+             ({} from {} to {} {unit}), or every sector stops before it is searched",
             settings.tolerance,
             range.1 - range.0,
+            value_key(k),
             range.0,
             range.1
         );
@@ -109,10 +122,10 @@ pub fn search(
             .map(|s| next_upper(s.allowable, range, settings.tolerance))
             .collect();
         let mut draw = RoundDraw::new(&wanted, next_candidate);
-        for (k, sector) in sectors.iter_mut().enumerate() {
-            if wanted[k] > 0 {
-                sector.rounds.push(Round {
-                    upper_deg: upper[k],
+        for (sector, s) in sectors.iter_mut().enumerate() {
+            if wanted[sector] > 0 {
+                s.rounds.push(Round {
+                    upper: upper[sector],
                     samples: Vec::new(),
                 });
             }
@@ -122,7 +135,7 @@ pub fn search(
         // in memory of one piece.
         let mut ran_round = 0u64;
         loop {
-            let (rows, row_sector) = draw.piece(&scenario, dist, &upper, &mut next_candidate);
+            let (rows, row_sector) = draw.piece(&scenario, (k, dist), &upper, &mut next_candidate);
             if rows.is_empty() {
                 break;
             }
@@ -133,19 +146,22 @@ pub fn search(
             pool.install(|| {
                 crate::sweep::run_until(&round, &model, isa, 0..count, CHUNK, &never, |ran| {
                     for r in ran {
-                        let k = row_sector[r.sample.index as usize];
+                        let sector = row_sector[r.sample.index as usize];
                         let stable = r.summary.outcome == Outcome::Stable;
-                        let last = sectors[k].rounds.last_mut().expect("the round is pushed");
-                        last.samples.push((r.sample.inputs.slope_deg, stable));
+                        let last = sectors[sector]
+                            .rounds
+                            .last_mut()
+                            .expect("the round is pushed");
+                        last.samples.push((r.sample.values()[k], stable));
                     }
                     Ok(())
                 })
             })?;
         }
         let got = draw.got;
-        for (k, sector) in sectors.iter_mut().enumerate() {
-            if wanted[k] > 0 && got[k] == 0 {
-                sector.stop = Some(Stop::Unreached);
+        for (sector, s) in sectors.iter_mut().enumerate() {
+            if wanted[sector] > 0 && got[sector] == 0 {
+                s.stop = Some(Stop::Unreached);
             }
         }
         total += ran_round;
@@ -165,6 +181,7 @@ pub fn search(
         candidates: next_candidate,
         dist,
         design,
+        input: k,
     })
 }
 
@@ -220,14 +237,41 @@ fn check_memory(settings: &Settings) -> anyhow::Result<()> {
     })
 }
 
-/// The slope distribution of `scenario`, refused where the search cannot draw below a bound
-/// or cannot keep the scenario's grid of control-law parameters.
-fn slope_distribution(scenario: &Scenario) -> anyhow::Result<Dist> {
-    let dist = scenario.inputs.slope_deg;
+/// The distribution of value `k` of `scenario`'s samples (the slope, or another input
+/// `--input` names), refused where the search cannot draw below a bound (not uniform or
+/// normal, or reaching below 0, where `stats` starts an interval that resolves no value),
+/// where the value places the sectors (the downhill azimuth, the yaw), or where the search
+/// cannot keep the scenario's grid of control-law parameters.
+fn input_distribution(scenario: &Scenario, k: usize) -> anyhow::Result<Dist> {
+    let dist = value_dists(scenario)[k];
+    let name = value_name(k);
     if !matches!(dist, Dist::Uniform { .. } | Dist::Normal { .. }) {
+        if k == 0 {
+            bail!(
+                "the scenario's slope_deg is {}: the boundary search draws slopes below a \
+                 bound, so it needs slope_deg drawn from a distribution (uniform or normal)",
+                dist.toml()
+            );
+        }
         bail!(
-            "the scenario's slope_deg is {}: the boundary search draws slopes below a bound, \
-             so it needs slope_deg drawn from a distribution (uniform or normal)",
+            "--input {name}: the scenario's {} is {}: the boundary search draws the input \
+             below a bound, so it needs it drawn from a distribution (uniform or normal)",
+            value_key(k),
+            dist.toml()
+        );
+    }
+    if ["downhill_azimuth_deg", "yaw_deg"].contains(&name) {
+        bail!(
+            "--input {name}: the sectors are those of the downhill azimuth relative to the \
+             yaw, so the search cannot draw {name} below a bound; search another input"
+        );
+    }
+    if dist.support().0 < 0.0 {
+        bail!(
+            "--input {name}: the scenario's {} = {} reaches below 0; the search's interval \
+             starts at 0 where no value is resolved as allowable, so it needs an input of \
+             values of at least 0",
+            value_key(k),
             dist.toml()
         );
     }
@@ -245,8 +289,8 @@ fn slope_distribution(scenario: &Scenario) -> anyhow::Result<Dist> {
 const PIECE_ROWS: usize = 65_536;
 
 /// The drawing of one round's rows: candidates drawn in order, each kept for its sector
-/// while the sector wants more (`wanted`), its slope redrawn below the sector's upper
-/// slope, until every sector has its rows or the candidates allowed run out.
+/// while the sector wants more (`wanted`), its slope (the input searched) redrawn below the
+/// sector's upper end, until every sector has its rows or the candidates allowed run out.
 struct RoundDraw {
     wanted: [u64; SECTORS],
     /// Rows each sector got so far.
@@ -270,7 +314,7 @@ impl RoundDraw {
     fn piece(
         &mut self,
         scenario: &Scenario,
-        dist: Dist,
+        (input, dist): (usize, Dist),
         upper: &[f64],
         next: &mut u64,
     ) -> (Vec<Sample>, Vec<usize>) {
@@ -287,7 +331,7 @@ impl RoundDraw {
             ));
             if self.got[k] < self.wanted[k] {
                 self.got[k] += 1;
-                rows.push(with_slope_below(s, dist, upper[k]));
+                rows.push(with_value_below(s, input, dist, upper[k]));
                 row_sector.push(k);
             }
         }

@@ -4,11 +4,11 @@
 
 use super::control::Control;
 use super::definition::Scenario;
-use super::inputs::{Dist, FIRST_LAW_VALUE, LAW_PARAMETERS, Parameter, VALUES};
+use super::inputs::{Dist, FIRST_LAW_VALUE, FIRST_STATE_VALUE, LAW_PARAMETERS, Parameter, VALUES};
 
 /// The distribution of each value of `scenario`'s samples (`Sample::values`): a parameter
 /// that the scenario does not sample is fixed at its value, a law parameter of a law the
-/// scenario has not at 0.
+/// scenario has not, and the touchdown state of a scenario that gives none, at 0.
 #[must_use]
 pub fn value_dists(scenario: &Scenario) -> [Dist; VALUES] {
     let inputs = scenario.inputs.to_array();
@@ -19,8 +19,13 @@ pub fn value_dists(scenario: &Scenario) -> [Dist; VALUES] {
         } else if k < FIRST_LAW_VALUE {
             let p = Parameter::ALL[k - inputs.len()];
             scenario.sampled[p as usize].unwrap_or(Dist::Fixed(scenario.parameter(p)))
-        } else {
+        } else if k < FIRST_STATE_VALUE {
             laws[k - FIRST_LAW_VALUE]
+        } else {
+            scenario
+                .initial
+                .touchdown
+                .map_or(Dist::Fixed(0.0), |t| t[k - FIRST_STATE_VALUE])
         }
     })
 }

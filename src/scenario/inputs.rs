@@ -203,13 +203,58 @@ const LAW_FIELDS: [(&str, &str, &str, Range); LAW_PARAMETERS] = {
 /// Where the law parameters start in `Sample::values`.
 pub const FIRST_LAW_VALUE: usize = INPUT_FIELDS.len() + PARAMETERS;
 
-/// Number of values a sample draws: the inputs (`INPUT_FIELDS`), the parameters
-/// (`PARAMETER_FIELDS`), then the built-in control laws' parameters (0 in a sample of a
-/// scenario without that law).
-pub const VALUES: usize = FIRST_LAW_VALUE + LAW_PARAMETERS;
+/// The inputs a touchdown state given in `[initial]` replaces, positions in
+/// `INPUT_FIELDS`: the release height and the three velocity errors (fixed at 0 with it).
+pub const FALL_INPUTS: std::ops::Range<usize> = 2..6;
 
-// The quasi-random design gives every value a dimension of the Sobol sequence.
-const _: () = assert!(VALUES <= crate::qmc::MAX_DIMENSIONS);
+/// Number of values of the touchdown state a scenario may give (`INITIAL_FIELDS`).
+pub const STATE_VALUES: usize = 3;
+
+/// The touchdown state a scenario may give in `[initial]` (`Start::State`), each value
+/// fixed or drawn per sample like a parameter: column name (its stream's too), key in
+/// `[initial]`, unit, and the range of its values.
+const STATE_FIELDS: [(&str, &str, &str, Range); STATE_VALUES] = [
+    (
+        "initial_normal_speed_m_s",
+        "normal_speed_m_s",
+        "m/s",
+        Range::at_least(0.0, "values of at least 0 m/s (towards the surface)"),
+    ),
+    (
+        "initial_tangential_speed_m_s",
+        "tangential_speed_m_s",
+        "m/s",
+        Range::at_least(0.0, "values of at least 0 m/s"),
+    ),
+    (
+        "initial_tangential_azimuth_deg",
+        "tangential_azimuth_deg",
+        "deg",
+        ANY,
+    ),
+];
+
+/// Column names and units of the touchdown state's values (`STATE_VALUES`), in the order of
+/// `Sample::touchdown`.
+pub const INITIAL_FIELDS: [(&str, &str); STATE_VALUES] = [
+    (STATE_FIELDS[0].0, STATE_FIELDS[0].2),
+    (STATE_FIELDS[1].0, STATE_FIELDS[1].2),
+    (STATE_FIELDS[2].0, STATE_FIELDS[2].2),
+];
+
+/// Where the touchdown state's values start in `Sample::values`.
+pub const FIRST_STATE_VALUE: usize = FIRST_LAW_VALUE + LAW_PARAMETERS;
+
+/// Number of values a sample draws: the inputs (`INPUT_FIELDS`), the parameters
+/// (`PARAMETER_FIELDS`), the built-in control laws' parameters (0 in a sample of a
+/// scenario without that law), then the touchdown state (`INITIAL_FIELDS`; 0 in a sample
+/// of a scenario that gives none).
+pub const VALUES: usize = FIRST_STATE_VALUE + STATE_VALUES;
+
+// The quasi-random design gives every value drawn from a distribution a dimension of the
+// Sobol sequence. A scenario that gives the touchdown state fixes the release height and
+// the three velocity errors (`FALL_INPUTS`, `Scenario::check_touchdown_state`): four fewer.
+const _: () = assert!(VALUES - (FALL_INPUTS.end - FALL_INPUTS.start) <= crate::qmc::MAX_DIMENSIONS);
 
 /// The column name of value `k` of a sample (`Sample::values`).
 #[must_use]
@@ -218,32 +263,63 @@ pub fn value_name(k: usize) -> &'static str {
         INPUT_FIELDS[k].0
     } else if k < FIRST_LAW_VALUE {
         PARAMETER_FIELDS[k - INPUT_FIELDS.len()].0
-    } else {
+    } else if k < FIRST_STATE_VALUE {
         LAW_FIELDS[k - FIRST_LAW_VALUE].0
+    } else {
+        STATE_FIELDS[k - FIRST_STATE_VALUE].0
     }
 }
+
+/// The unit of value `k` of a sample, as its column's.
+#[must_use]
+pub fn value_unit(k: usize) -> &'static str {
+    if k < INPUT_FIELDS.len() {
+        INPUT_FIELDS[k].1
+    } else if k < FIRST_LAW_VALUE {
+        PARAMETER_FIELDS[k - INPUT_FIELDS.len()].1
+    } else if k < FIRST_STATE_VALUE {
+        LAW_UNITS[k - FIRST_LAW_VALUE]
+    } else {
+        STATE_FIELDS[k - FIRST_STATE_VALUE].2
+    }
+}
+
+/// The units of the law parameters, in the order of `LAW_FIELDS`.
+const LAW_UNITS: [&str; LAW_PARAMETERS] = [
+    "N",
+    "s",
+    "N m/rad",
+    "N m s/rad",
+    "m",
+    "m/s",
+    "m/s^2",
+    "1/s",
+    "m/s",
+];
 
 /// The name of the stream value `k` of a sample draws from (`rng::stream`): its column
 /// name, but for the attitude hold's gains, whose streams kept their first names.
 #[must_use]
 pub fn stream_name(k: usize) -> &'static str {
-    if k < FIRST_LAW_VALUE {
-        value_name(k)
-    } else {
+    if (FIRST_LAW_VALUE..FIRST_STATE_VALUE).contains(&k) {
         LAW_FIELDS[k - FIRST_LAW_VALUE].1
+    } else {
+        value_name(k)
     }
 }
 
 /// The scenario key of value `k` of a sample (`inputs.slope_deg`, `lander.mass_kg`,
-/// `control.hold_down.thrust_n`).
+/// `control.hold_down.thrust_n`, `initial.normal_speed_m_s`).
 #[must_use]
 pub fn value_key(k: usize) -> String {
     if k < INPUT_FIELDS.len() {
         format!("inputs.{}", INPUT_FIELDS[k].0)
     } else if k < FIRST_LAW_VALUE {
         Parameter::ALL[k - INPUT_FIELDS.len()].key().to_string()
-    } else {
+    } else if k < FIRST_STATE_VALUE {
         LAW_FIELDS[k - FIRST_LAW_VALUE].2.to_string()
+    } else {
+        format!("initial.{}", STATE_FIELDS[k - FIRST_STATE_VALUE].1)
     }
 }
 
@@ -336,6 +412,8 @@ const ANY: Range = Range {
 pub fn check_value(k: usize, x: f64) -> Result<(), &'static str> {
     let range = if k < INPUT_RANGES.len() {
         INPUT_RANGES[k]
+    } else if k >= FIRST_STATE_VALUE {
+        STATE_FIELDS[k - FIRST_STATE_VALUE].3
     } else if k >= FIRST_LAW_VALUE {
         LAW_FIELDS[k - FIRST_LAW_VALUE].3
     } else if PARAMETER_POSITIVE[k - INPUT_RANGES.len()] {
@@ -359,6 +437,16 @@ pub(super) fn read_inputs(r: &mut Reader) -> Result<Inputs<Dist>, ScenarioError>
     }
     r.finish()?;
     Ok(Inputs::from_array(out))
+}
+
+/// Reads the touchdown state's value `j` (`INITIAL_FIELDS`) at its key of `[initial]` (`r`):
+/// a number or a distribution within its range, `None` where the file does not give it.
+pub(super) fn read_state_value(r: &mut Reader, j: usize) -> Result<Option<Dist>, ScenarioError> {
+    let (_, key, _, range) = STATE_FIELDS[j];
+    match r.take(key) {
+        None => Ok(None),
+        Some(v) => read_dist(r, key, &v, &range).map(Some),
+    }
 }
 
 /// Reads `key` of `r` as a number or a `{ dist = ..., ... }` table whose values are all at

@@ -39,8 +39,9 @@ pub use draws::{
 pub use error::ScenarioError;
 pub use initial::{AttitudeReference, Initial, Start};
 pub use inputs::{
-    Dist, FIRST_LAW_VALUE, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETER_FIELDS, PARAMETERS,
-    Parameter, Sampled, VALUES, check_value, stream_name, value_key, value_name,
+    Dist, FALL_INPUTS, FIRST_LAW_VALUE, FIRST_STATE_VALUE, INITIAL_FIELDS, INPUT_FIELDS, Inputs,
+    LAW_PARAMETERS, PARAMETER_FIELDS, PARAMETERS, Parameter, STATE_VALUES, Sampled, VALUES,
+    check_value, stream_name, value_key, value_name, value_unit,
 };
 pub use lander::{Geometry, Lander};
 pub use limits::{Broken, LIMIT_NAMES, Limits, Loads};

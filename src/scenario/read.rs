@@ -8,7 +8,7 @@ use super::definition::{Design, Scenario, read_scenario};
 use super::draws::{design_inputs, value_dists};
 use super::error::ScenarioError;
 use super::initial::Start;
-use super::inputs::{Dist, Parameter, value_key};
+use super::inputs::{Dist, FALL_INPUTS, Parameter, value_key};
 use super::lander::Geometry;
 use super::reader::Reader;
 
@@ -97,6 +97,7 @@ impl Scenario {
         if let Some(limits) = &s.limits {
             limits.check(s.damper.enabled)?;
         }
+        s.check_touchdown_state()?;
         Ok(s)
     }
 
@@ -161,6 +162,31 @@ impl Scenario {
                          descent are planned for one lander; not yet drawn per sample)",
                     );
                 }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Scenario {
+    /// Refuses a touchdown state given (`Start::State`) beside a fall or velocity errors:
+    /// the state replaces them, so `release_height_m` and `velocity_error_*` must be 0.
+    fn check_touchdown_state(&self) -> Result<(), ScenarioError> {
+        if self.initial.start != Start::State {
+            return Ok(());
+        }
+        let inputs = self.inputs.to_array();
+        for k in FALL_INPUTS {
+            if inputs[k] != Dist::Fixed(0.0) {
+                return Err(invalid(
+                    &value_key(k),
+                    inputs[k].toml(),
+                    "0 with the touchdown state given in [initial] (initial.normal_speed_m_s): \
+                     the state replaces the fall and the velocity errors, so fix \
+                     inputs.release_height_m and inputs.velocity_error_x_m_s, _y_m_s and _z_m_s \
+                     at 0"
+                        .into(),
+                ));
             }
         }
         Ok(())
@@ -288,6 +314,10 @@ impl Scenario {
         // surface from its starting gap before t_max: else (nearly) no sample ever touches.
         let height = self.inputs.release_height_m.support().1;
         let (v, gap) = match self.initial.start {
+            Start::State => (
+                self.initial.touchdown.map_or(0.0, |t| t[0].support().1),
+                self.initial.clearance_m,
+            ),
             Start::Touchdown => (
                 (2.0 * self.gravity_m_s2 * height).sqrt(),
                 self.initial.clearance_m,
@@ -316,6 +346,10 @@ impl Scenario {
                     "a run long enough to reach the surface: {from} in gravity_m_s2 = {g} \
                      m/s^2 the lander needs {reach_s:.3e} s, so no sample would ever touch it",
                     from = match self.initial.start {
+                        Start::State => format!(
+                            "from initial.clearance_m = {gap} m at {v:.4} m/s (the largest \
+                             initial.normal_speed_m_s)"
+                        ),
                         Start::Touchdown => format!(
                             "from initial.clearance_m = {gap} m at {v:.4} m/s (released from \
                              inputs.release_height_m up to {height} m)"

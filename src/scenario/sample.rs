@@ -1,7 +1,10 @@
 //! One sample: the values it drew (its inputs, parameters and control-law parameters), its
 //! generator seed and its terrain tile and offset. `sampling` draws it; the physics runs it.
 
-use super::inputs::{FIRST_LAW_VALUE, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETERS, VALUES};
+use super::inputs::{
+    FIRST_LAW_VALUE, FIRST_STATE_VALUE, INPUT_FIELDS, Inputs, LAW_PARAMETERS, PARAMETERS,
+    STATE_VALUES, VALUES,
+};
 
 /// Everything that makes one sample differ from another.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -22,10 +25,14 @@ pub struct Sample {
     /// The value of each built-in control law's parameter (`Control::parameters`) for this
     /// sample: its draw, or the scenario's number (0 where the scenario has no such law).
     pub law: [f64; LAW_PARAMETERS],
+    /// The touchdown state the scenario gives (`INITIAL_FIELDS`: speed towards the surface,
+    /// speed along it and its azimuth from downhill), its draw or the scenario's number; 0
+    /// where the scenario gives none.
+    pub touchdown: [f64; STATE_VALUES],
 }
 
 impl Sample {
-    /// The inputs, then the parameters, then the law parameters.
+    /// The inputs, then the parameters, the law parameters and the touchdown state.
     #[must_use]
     pub fn values(&self) -> [f64; VALUES] {
         let inputs = self.inputs.to_array();
@@ -34,18 +41,21 @@ impl Sample {
                 inputs[k]
             } else if k < FIRST_LAW_VALUE {
                 self.parameters[k - inputs.len()]
-            } else {
+            } else if k < FIRST_STATE_VALUE {
                 self.law[k - FIRST_LAW_VALUE]
+            } else {
+                self.touchdown[k - FIRST_STATE_VALUE]
             }
         })
     }
 
-    /// Sets the inputs, parameters and law parameters from `values` (as `values` gives
-    /// them).
+    /// Sets the inputs, parameters, law parameters and touchdown state from `values` (as
+    /// `values` gives them).
     pub fn set_values(&mut self, values: [f64; VALUES]) {
         let n = INPUT_FIELDS.len();
         self.inputs = Inputs::from_array(std::array::from_fn(|k| values[k]));
         self.parameters = std::array::from_fn(|k| values[n + k]);
         self.law = std::array::from_fn(|k| values[FIRST_LAW_VALUE + k]);
+        self.touchdown = std::array::from_fn(|k| values[FIRST_STATE_VALUE + k]);
     }
 }

@@ -7,7 +7,8 @@ use super::rows::FileRows;
 use super::sha256::file_sha256;
 use super::source::{Kind, head};
 use crate::scenario::{
-    Design, FIRST_LAW_VALUE, INPUT_FIELDS, InputTable, METADATA_KEYS, Parameter, Scenario, VALUES,
+    Design, FIRST_LAW_VALUE, FIRST_STATE_VALUE, INPUT_FIELDS, InputTable, METADATA_KEYS, Parameter,
+    Scenario, VALUES,
 };
 use anyhow::bail;
 use std::path::{Path, PathBuf};
@@ -85,6 +86,20 @@ pub fn attach(scenario: &mut Scenario, path: &Path, keep_columns: bool) -> anyho
                 }),
                 None => Some(crate::scenario::Dist::Uniform { min, max }),
             };
+        }
+    }
+    if let Some(state) = scenario.initial.touchdown.as_mut() {
+        // The touchdown state the table gives, drawn per sample as its columns say.
+        for (j, d) in state.iter_mut().enumerate() {
+            if let Some((min, max)) = ranges[FIRST_STATE_VALUE + j] {
+                let (lo, hi) = d.support();
+                if !(lo <= min && max <= hi && !matches!(d, crate::scenario::Dist::Fixed(_))) {
+                    *d = crate::scenario::Dist::Uniform {
+                        min: lo.min(min),
+                        max: hi.max(max),
+                    };
+                }
+            }
         }
     }
     widen_laws(scenario, &ranges, path)?;

@@ -3,7 +3,8 @@
 //! through; result columns refused.
 
 use crate::scenario::{
-    FIRST_LAW_VALUE, Geometry, INPUT_FIELDS, Parameter, Scenario, VALUES, value_key, value_name,
+    FALL_INPUTS, FIRST_LAW_VALUE, FIRST_STATE_VALUE, Geometry, INPUT_FIELDS, Parameter, Scenario,
+    Start, VALUES, value_key, value_name,
 };
 use anyhow::{anyhow, bail};
 use std::path::Path;
@@ -32,7 +33,16 @@ pub(super) fn role(
     path: &Path,
 ) -> anyhow::Result<Role> {
     if let Some(k) = (0..VALUES).find(|&k| value_name(k) == name) {
-        if k >= FIRST_LAW_VALUE {
+        if k >= FIRST_STATE_VALUE {
+            if scenario.initial.touchdown.is_none() {
+                bail!(
+                    "{}: column {name} ({}): the scenario gives no touchdown state (no \
+                     initial.normal_speed_m_s with initial.start = \"touchdown\")",
+                    path.display(),
+                    value_key(k)
+                );
+            }
+        } else if k >= FIRST_LAW_VALUE {
             let law = k - FIRST_LAW_VALUE;
             let given = scenario
                 .control
@@ -47,6 +57,13 @@ pub(super) fn role(
                     path.display()
                 );
             }
+        } else if FALL_INPUTS.contains(&k) && scenario.initial.start == Start::State {
+            bail!(
+                "{}: column {name} ({}): the scenario gives the touchdown state \
+                 (initial.normal_speed_m_s), which replaces the fall and the velocity errors",
+                path.display(),
+                value_key(k)
+            );
         } else if k >= INPUT_FIELDS.len() {
             let p = Parameter::ALL[k - INPUT_FIELDS.len()];
             let refuse =

@@ -220,7 +220,13 @@ pub fn batch(
                 .find(|p| p.name() == other)
             {
                 Some(&p) => f64s(&|r| r.sample.parameters[p as usize]),
-                None => anyhow::bail!("no column {other} in a sweep"),
+                None => match crate::scenario::INITIAL_FIELDS
+                    .iter()
+                    .position(|(name, _)| *name == other)
+                {
+                    Some(j) => f64s(&|r| r.sample.touchdown[j]),
+                    None => anyhow::bail!("no column {other} in a sweep"),
+                },
             },
         });
     }

@@ -32,13 +32,24 @@ pub struct SweepInfo<'a> {
 }
 
 /// The names of the parameter columns (`PARAMETER_FIELDS`) a sweep of `scenario` writes:
-/// those it draws per sample.
+/// those it draws per sample; then those of the touchdown state's values it draws
+/// (`INITIAL_FIELDS`).
 #[must_use]
 pub fn parameter_columns(scenario: &crate::scenario::Scenario) -> Vec<&'static str> {
+    let state = scenario.initial.touchdown.map_or([false; 3], |t| {
+        t.map(|d| !matches!(d, crate::scenario::Dist::Fixed(_)))
+    });
     crate::scenario::Parameter::ALL
         .iter()
         .filter(|p| scenario.sampled[**p as usize].is_some())
         .map(|p| p.name())
+        .chain(
+            crate::scenario::INITIAL_FIELDS
+                .iter()
+                .zip(state)
+                .filter(|(_, drawn)| *drawn)
+                .map(|((name, _), _)| *name),
+        )
         .collect()
 }
 
@@ -267,6 +278,16 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
                 DataType::Float64,
                 unit,
                 "scenario parameter drawn per sample",
+            ));
+        }
+    }
+    for (name, unit) in crate::scenario::INITIAL_FIELDS {
+        if info.parameters.contains(&name) {
+            fields.push(f(
+                name,
+                DataType::Float64,
+                unit,
+                "touchdown state given by the scenario, drawn per sample (MODEL.md section 8)",
             ));
         }
     }
