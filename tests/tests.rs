@@ -8,6 +8,7 @@ mod cli;
 mod collisions;
 mod common;
 mod cpus;
+mod envelope;
 mod exceedance;
 mod flown;
 mod hostile_files;
