@@ -17,8 +17,11 @@ const PANEL: (u32, u32) = (470, 420);
 
 /// Heights of the title and legend strips and width of the colour bar's strip, pixels.
 const TITLE: u32 = 44;
-const LEGEND: u32 = 78;
+const LEGEND: u32 = 100;
 const BAR: u32 = 120;
+
+/// The narrowest picture, pixels: the legend's longest line.
+const MIN_WIDTH: u32 = 820;
 
 /// The colour of cells without samples.
 const EMPTY: RGBColor = RGBColor(238, 238, 238);
@@ -39,12 +42,13 @@ pub(crate) fn envelope_chart(out: &Path, e: &Envelope) -> anyhow::Result<()> {
     let bands = e.panels.len() / facings;
     let cols = bands.clamp(1, COLUMNS);
     let rows = bands.div_ceil(cols) * facings;
-    let width = PANEL.0 * cols as u32 + BAR;
+    // Wide enough for the legend's lines.
+    let width = (PANEL.0 * cols as u32 + BAR).max(MIN_WIDTH);
     let height = TITLE + PANEL.1 * rows as u32 + LEGEND;
     save_png(out, (width, height), |root| {
         let (title, rest) = root.split_vertically(TITLE);
         let (body, foot) = rest.split_vertically(PANEL.1 * rows as u32);
-        let (grid, bar) = body.split_horizontally(PANEL.0 * cols as u32);
+        let (grid, bar) = body.split_horizontally(width - BAR);
         title
             .titled(
                 &format!(
@@ -90,6 +94,13 @@ fn panel(area: &Area<'_>, e: &Envelope, p: &Panel) -> anyhow::Result<()> {
     let mut caption = format!("{}: {} samples", panel_title(p), p.samples());
     if e.limits {
         caption.push_str(&format!(", {} broke a limit", p.limits_broken()));
+    }
+    if !p
+        .rows
+        .iter()
+        .any(|r| matches!(r.boundary, Allowable::Slope { .. }))
+    {
+        caption.push_str("; no row 99 % stable");
     }
     let mut chart = ChartBuilder::on(area)
         .caption(caption, (FONT, 16))
@@ -307,47 +318,43 @@ fn colour_bar(area: &Area<'_>) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The legend strip: what the line, the band and the outlines mean.
+/// The legend strip: what the line, the band, the numbers and the outlines mean, a line
+/// each.
 fn legend(area: &Area<'_>, e: &Envelope) -> anyhow::Result<()> {
     let style = (FONT, 14).into_font();
-    let (x0, y0) = (20, 14);
+    let x0 = 20;
+    let line = |k: i32| 10 + 21 * k;
     area.draw(&PathElement::new(
-        vec![(x0, y0 + 8), (x0 + 30, y0 + 8)],
+        vec![(x0, line(0) + 8), (x0 + 30, line(0) + 8)],
         BOUNDARY.stroke_width(3),
     ))
     .map_err(drawing)?;
-    area.draw(&Text::new(
-        "99 %-stable boundary of each row: the largest x at or below which ≥ 99 % of the \
-         row's samples are stable (report's allowable-slope rule along x)",
-        (x0 + 40, y0),
-        style.clone(),
-    ))
-    .map_err(drawing)?;
     area.draw(&Rectangle::new(
-        [(x0, y0 + 24), (x0 + 30, y0 + 38)],
+        [(x0, line(1) + 1), (x0 + 30, line(1) + 15)],
         BOUNDARY.mix(0.22).filled(),
     ))
     .map_err(drawing)?;
-    let mut second = "its 95 % interval (band and whisker); rows without a line: no x with \
-                      ≥ 99 % stable, or too few samples (see the table)"
-        .to_string();
+    let mut texts = vec![
+        "99 %-stable boundary of a row: the largest x with ≥ 99 % of the row's samples at or \
+         below it stable"
+            .to_string(),
+        "its 95 % interval (band and whisker); no line: no such x, or too few samples (see \
+         the table)"
+            .to_string(),
+        format!("numbers: stable share (%); pale: fewer than {FEW} samples; grey: no samples"),
+    ];
     if e.limits {
         area.draw(&Rectangle::new(
-            [(x0, y0 + 48), (x0 + 30, y0 + 62)],
+            [(x0, line(3) + 1), (x0 + 30, line(3) + 15)],
             LIMIT.stroke_width(2),
         ))
         .map_err(drawing)?;
-        area.draw(&Text::new(
-            "cells where samples broke a limit (limits_broken), with the share of their samples that did",
-            (x0 + 40, y0 + 48),
-            style.clone(),
-        ))
-        .map_err(drawing)?;
+        texts
+            .push("cells where samples broke a limit (limits_broken), with their share (%)".into());
     }
-    second.push_str(&format!(
-        "; numbers: stable share (%); pale cells: fewer than {FEW} samples; grey: none"
-    ));
-    area.draw(&Text::new(second, (x0 + 40, y0 + 24), style))
-        .map_err(drawing)?;
+    for (k, t) in texts.into_iter().enumerate() {
+        area.draw(&Text::new(t, (x0 + 40, line(k as i32)), style.clone()))
+            .map_err(drawing)?;
+    }
     Ok(())
 }
