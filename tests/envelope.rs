@@ -522,3 +522,50 @@ fn bad_input_is_refused_naming_it() {
     }
     assert!(problems.is_empty(), "{}", problems.join("\n\n"));
 }
+
+#[test]
+fn azimuth_splits_each_band_into_leg_and_side_downhill() {
+    let dir = TempDir::new("envelope-azimuth");
+    sweep(&dir, SHORT, "1000", "d.arrow");
+    let md = envelope(&dir, &["d.arrow", "--azimuth", "--bins", "3,2"]);
+    for title in [
+        "## slope 0–15 deg, leg-downhill",
+        "## slope 0–15 deg, side-downhill",
+        "## slope 30–45 deg, side-downhill",
+    ] {
+        assert!(md.contains(title), "{title}:\n{md}");
+    }
+    // The default gear's legs point at 45, 135, 225 and 315 deg from X_B: a leg is
+    // downhill where the downhill azimuth relative to the lander is within 22.5 deg of one.
+    let c = columns(&dir.join("d.arrow"));
+    let (azimuth, yaw, slope, normal) = (
+        &c.numbers["downhill_azimuth_deg"],
+        &c.numbers["yaw_deg"],
+        &c.numbers["slope_deg"],
+        &c.numbers["touchdown_normal_speed_m_s"],
+    );
+    let rows = csv_rows(&dir.join("d-envelope.csv"));
+    for band in [(0.0, 15.0), (15.0, 30.0), (30.0, 45.0)] {
+        for facing in ["leg-downhill", "side-downhill"] {
+            let expected = (0..1000)
+                .filter(|&i| {
+                    let relative = (azimuth[i] - yaw[i]).rem_euclid(360.0);
+                    let off = (relative - 45.0).rem_euclid(90.0);
+                    let leg = off.min(90.0 - off) <= 22.5;
+                    !normal[i].is_nan()
+                        && slope[i] >= band.0
+                        && (slope[i] < band.1 || band.1 == 45.0)
+                        && leg == (facing == "leg-downhill")
+                })
+                .count();
+            let counted: f64 = rows
+                .iter()
+                .filter(|r| r["facing"] == facing && num(r, "slope_min_deg") == band.0)
+                .map(|r| num(r, "samples"))
+                .sum();
+            assert_eq!(counted as usize, expected, "{band:?} {facing}");
+            // Half the azimuths face a leg: each facing holds a fair share of the band.
+            assert!(expected > 60, "{band:?} {facing}: {expected}");
+        }
+    }
+}
