@@ -29,6 +29,10 @@ const EMPTY: RGBColor = RGBColor(238, 238, 238);
 /// The outline of cells where samples broke a limit.
 const LIMIT: RGBColor = RGBColor(200, 0, 200);
 
+/// The share of a cell's samples that broke a limit: darker than the outline, to read on
+/// any cell.
+const LIMIT_TEXT: RGBColor = RGBColor(110, 0, 130);
+
 /// The boundary's colour.
 const BOUNDARY: RGBColor = RGBColor(0, 0, 0);
 
@@ -72,13 +76,14 @@ pub(crate) fn envelope_chart(out: &Path, e: &Envelope) -> anyhow::Result<()> {
     })
 }
 
-/// The colour of a stable share `p` in [0, 1]: red through yellow to green.
+/// The colour of a stable share `p` in [0, 1]: red through yellow to green, light enough
+/// at the red end for the cells' numbers to read.
 fn share_colour(p: f64) -> RGBColor {
     const STOPS: [(f64, [f64; 3]); 5] = [
-        (0.0, [215.0, 48.0, 39.0]),
-        (0.25, [252.0, 141.0, 89.0]),
+        (0.0, [240.0, 96.0, 72.0]),
+        (0.25, [253.0, 174.0, 97.0]),
         (0.5, [254.0, 224.0, 139.0]),
-        (0.75, [145.0, 207.0, 96.0]),
+        (0.75, [166.0, 217.0, 106.0]),
         (1.0, [26.0, 152.0, 80.0]),
     ];
     let p = p.clamp(0.0, 1.0);
@@ -100,10 +105,14 @@ fn panel(area: &Area<'_>, e: &Envelope, p: &Panel) -> anyhow::Result<()> {
         .iter()
         .any(|r| matches!(r.boundary, Allowable::Slope { .. }))
     {
-        caption.push_str("; no row 99 % stable");
+        caption.push_str("; no 99 % row");
     }
+    // Smaller type for a longer caption, so that it stays over its panel (DejaVu Sans is
+    // about 0.45 of its size wide a character, measured).
+    let width = f64::from(area.dim_in_pixel().0) - 20.0;
+    let size = (width / (0.47 * caption.chars().count() as f64)).clamp(10.0, 16.0);
     let mut chart = ChartBuilder::on(area)
-        .caption(caption, (FONT, 16))
+        .caption(caption, (FONT, size))
         .margin(10)
         .x_label_area_size(44)
         .y_label_area_size(64)
@@ -219,7 +228,7 @@ fn limit_marks(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow::
                 let share = 100.0 * c.limits_broken as f64 / c.samples() as f64;
                 let style = (FONT, 10)
                     .into_font()
-                    .color(&LIMIT)
+                    .color(&LIMIT_TEXT)
                     .pos(Pos::new(HPos::Center, VPos::Center));
                 chart
                     .draw_series(std::iter::once(Text::new(
