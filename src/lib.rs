@@ -21,7 +21,8 @@
 //! - Files: `output` (Arrow and Parquet written and read back), `table` (the user's tables
 //!   of inputs read and checked).
 //! - Statistics: `stats` (intervals and the allowable-slope rule), `report`, `weighting`,
-//!   `sensitivity`, `compare`, `study` (its table), `boundary` (its rules).
+//!   `sensitivity`, `compare`, `study` (its table), `boundary` (its rules), `envelope`
+//!   (outcome shares over the plane of two columns).
 //! - `run`: the sweep run (plans, workers, signals, progress, resume), a trace's run, a
 //!   study's values, the boundary search.
 //! - Pictures: `plot`, `scene`, `animate`, `view`.
@@ -34,6 +35,7 @@ pub mod commands;
 pub mod compare;
 pub mod control;
 pub mod dist;
+pub mod envelope;
 pub mod exceedance;
 pub mod output;
 pub mod plot;

@@ -31,6 +31,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "compare",
             "study",
             "boundary",
+            "envelope",
             "exceedance",
         ],
     ),

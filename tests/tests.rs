@@ -9,6 +9,7 @@ mod cli;
 mod collisions;
 mod common;
 mod cpus;
+mod envelope;
 mod exceedance;
 mod flown;
 mod hostile_files;

@@ -4,6 +4,7 @@
 pub mod animate;
 pub mod boundary;
 pub mod compare;
+pub mod envelope;
 pub mod flags;
 pub mod merge;
 pub mod plot;
@@ -66,6 +67,10 @@ pub enum Command {
     View(view::ViewArgs),
     /// Find the allowable slope per azimuth sector directly, by adaptive sampling.
     Boundary(boundary::BoundaryArgs),
+    /// The touchdown envelope of a sweep file: outcome shares over the plane of two
+    /// columns (the speeds along and towards the surface at the first contact), per slope
+    /// band, with the 99 %-stable boundary of each row (PNG, CSV, Markdown on stdout).
+    Envelope(envelope::EnvelopeArgs),
 }
 
 /// The `touchdown` program: parses the command line, runs it, prints an error and returns
@@ -111,6 +116,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Animate(args) => animate::run(&args),
         Command::View(args) => view::run(&args),
         Command::Merge(args) => merge::run(&args),
+        Command::Envelope(args) => envelope::run(&args),
     }
 }
 
@@ -138,6 +144,7 @@ fn inputs_of(command: &Command) -> Vec<&std::path::Path> {
         Command::Animate(a) => vec![Some(&a.trace)],
         Command::View(a) => vec![Some(&a.trace)],
         Command::Merge(a) => a.shards.iter().map(|p| Some(p.as_path())).collect(),
+        Command::Envelope(a) => vec![Some(&a.sweep)],
     };
     given.into_iter().flatten().collect()
 }

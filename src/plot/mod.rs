@@ -4,6 +4,7 @@
 //! no system fonts, no Python.
 
 pub(crate) mod canvas;
+mod envelope;
 mod exceedance;
 mod sensitivity;
 mod study;
@@ -14,6 +15,7 @@ use crate::output::read::{format_of, open};
 use anyhow::{anyhow, bail};
 use std::path::{Path, PathBuf};
 
+pub(crate) use envelope::envelope_chart;
 pub use sensitivity::sensitivity_chart;
 pub(crate) use study::study_chart;
 
