@@ -53,10 +53,6 @@ pub struct LegStep<L: Lane> {
     pub tip_velocity_m_s: Vec3<L>,
     pub penetration_m: L,
     pub normal_n: L,
-    /// The strut's axial load (`F . strut_up`, compressive positive) and its side load
-    /// squared (`|F - (F . strut_up) strut_up|^2`), 0 off the surface.
-    pub axial_n: L,
-    pub side_squared: L,
     /// Mask: the footpad slips (in contact, friction at its cap).
     pub slipping: L::Mask,
 }
@@ -227,8 +223,6 @@ impl<L: Lane> Block<L> {
             tip_velocity_m_s: Vec3::ZERO,
             penetration_m: zero,
             normal_n: zero,
-            axial_n: zero,
-            side_squared: zero,
             slipping: all_false::<L>(),
         };
         let identity = Quat {

@@ -122,14 +122,6 @@ pub fn observe<L: Lane, const DAMPERS: bool, const THRUST: bool>(
     let mut all_slipping = all_true::<L>();
     for (leg, step) in block.legs.iter_mut().zip(&block.leg_step) {
         leg.peak_normal_n = max_into(leg.peak_normal_n, step.normal_n);
-        // The strut loads' peaks and their steps' start (the first step of a peak: a NaN
-        // load, of a lane whose state turned non-finite, is never above it).
-        let higher = step.axial_n.simd_gt(leg.peak_axial_n);
-        leg.peak_axial_n = higher.select(step.axial_n, leg.peak_axial_n);
-        leg.peak_axial_s = higher.select(block.start_t_s, leg.peak_axial_s);
-        let higher = step.side_squared.simd_gt(leg.peak_side_squared);
-        leg.peak_side_squared = higher.select(step.side_squared, leg.peak_side_squared);
-        leg.peak_side_s = higher.select(block.start_t_s, leg.peak_side_s);
         contacts += step.penetration_m.simd_gt(zero).select(one, zero);
         all_slipping &= step.slipping;
         resting += step.penetration_m.simd_gt(rest_gap).select(one, zero);

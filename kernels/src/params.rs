@@ -102,6 +102,10 @@ pub struct Params<L> {
     /// Whether the landers have a control loop (thrusters): the step then applies
     /// `Block::thrust` and stops at its events.
     pub thrust: bool,
+    /// Whether every strut axis is `-Z_B` (the default): the strut's direction from the
+    /// footpad to the hip in I is then `Z_B`, the rotation's third column, with the same
+    /// bits as the product `-R u` gives, and the step skips that product.
+    pub struts_along_z: bool,
 }
 
 impl<L: Lane> Params<L> {

@@ -1,7 +1,7 @@
 //! The step kernel: every leg's contact, then the rigid body, for `LANES` landers at once,
 //! each with its own step length. The reference's `step` module does the same in scalar.
 
-use crate::block::{Block, SurfaceLanes};
+use crate::block::{Block, LegLanes, SurfaceLanes};
 use crate::contact::{self, tip_in_body};
 use crate::lane::{Lane, Mask, all_false, min_into};
 use crate::params::Params;
@@ -76,8 +76,6 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: boo
         // itself where it needs them, `start_tips`.)
         let (normal_n, slipping) = if (contact & block.active).to_bitmask() == 0 {
             leg_state.anchored = all_false::<L>();
-            out.axial_n = zero;
-            out.side_squared = zero;
             (zero, all_false::<L>())
         } else {
             let arm = rotation.mul_vec3(tip_b);
@@ -85,7 +83,11 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: boo
             let tip_velocity = block.velocity_m_s + rate_i.cross(arm);
             out.tip_velocity_m_s = tip_velocity;
             // The strut direction, footpad to hip, in I: the dampers' and the strut loads'.
-            let strut_up = -rotation.mul_vec3(leg.strut_axis);
+            let strut_up = if p.struts_along_z {
+                rotation.z_axis
+            } else {
+                -rotation.mul_vec3(leg.strut_axis)
+            };
             let (f, normal_n, slipping) = contact::leg_force::<L, DAMPERS>(
                 p,
                 dt,
@@ -99,11 +101,7 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: boo
             );
             force_n += f;
             moment_i += arm.cross(f);
-            // The strut loads (MODEL.md section 9): along the strut, compressive positive,
-            // and across it, squared (its root only once, for the summary).
-            let axial = f.dot(strut_up);
-            out.axial_n = axial;
-            out.side_squared = strut_up.mul_neg_add(axial, f).length_squared();
+            strut_peaks(leg_state, f, strut_up, block.t_s);
             (normal_n, slipping)
         };
         out.penetration_m = penetration;
@@ -140,6 +138,28 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: boo
     );
     block.rotation = block.attitude.to_mat3();
     add_time(&mut block.t_s, &mut block.t_error_s, dt);
+}
+
+/// The strut loads of a leg whose footpad takes the force `f` (in I; 0 where it does not
+/// touch), `strut_up` its strut's direction from the footpad to the hip: along the strut,
+/// compressive positive, `A = f . strut_up`, and across it squared, `|f|^2 - A^2` (its root
+/// only once, for the summary; the reference's `step::strut_loads`), into the leg's peaks
+/// with the start `t_s` of the step (the first step of a peak: a NaN load, of a lane whose
+/// state turned non-finite, is never above it). A leg off the surface in every lane takes
+/// no step here: its loads are 0, never above a peak.
+#[inline(always)]
+fn strut_peaks<L: Lane>(leg: &mut LegLanes<L>, f: Vec3<L>, strut_up: Vec3<L>, t_s: L) {
+    let axial = f.dot(strut_up);
+    let side_squared = axial.mul_neg_add(axial, f.length_squared());
+    let higher = axial.simd_gt(leg.peak_axial_n);
+    let higher_side = side_squared.simd_gt(leg.peak_side_squared);
+    // Most steps set no new peak (loads rise at impacts, then settle): they only compare.
+    if (higher | higher_side).to_bitmask() != 0 {
+        leg.peak_axial_n = higher.select(axial, leg.peak_axial_n);
+        leg.peak_axial_s = higher.select(t_s, leg.peak_axial_s);
+        leg.peak_side_squared = higher_side.select(side_squared, leg.peak_side_squared);
+        leg.peak_side_s = higher_side.select(t_s, leg.peak_side_s);
+    }
 }
 
 /// `t += dt`, compensated (Kahan): `error` keeps what rounding dropped and the next step

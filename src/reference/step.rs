@@ -190,11 +190,17 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
 
 /// The loads of a strut whose footpad takes the force `force_n` (in I), `strut_up` its
 /// unit direction from the footpad to the hip (in I): along it, compressive positive,
-/// `A = F . strut_up` (`-F_B . u` in B), and across it, `|F - A strut_up|`, N.
+/// `A = F . strut_up` (`-F_B . u` in B), and across it, `|F - A strut_up|`, as
+/// `sqrt(|F|^2 - A^2)` (0 where rounding makes that negative), N. (Off by up to 1e-8 |F|
+/// where the side load is near 0, by the difference of squares: far below any load that
+/// matters.)
 #[must_use]
 pub fn strut_loads(force_n: DVec3, strut_up: DVec3) -> (f64, f64) {
     let axial = force_n.dot(strut_up);
-    (axial, (force_n - strut_up * axial).length())
+    (
+        axial,
+        (force_n.length_squared() - axial * axial).max(0.0).sqrt(),
+    )
 }
 
 /// Height above the base plane of the footpad at `tip_b` (in B): that of the CG, plus the

@@ -6,7 +6,7 @@ use super::schema::{SweepInfo, schema};
 use crate::output::format::{BATCH_ROWS, Format};
 use crate::output::{AtomicFile, ENGINE, IpcWriter, Out};
 use crate::sweep::Row;
-use arrow_array::RecordBatch;
+use arrow_array::{Array, ArrayRef, Float64Array, RecordBatch};
 use arrow_schema::SchemaRef;
 use arrow_select::concat::concat_batches;
 use parquet::arrow::ArrowWriter;
@@ -222,8 +222,25 @@ impl Rebatcher {
 
     /// Writes the pieces as one batch of fresh (unsliced) arrays.
     fn write(&mut self, writer: &mut SweepWriter) -> anyhow::Result<()> {
-        let whole = concat_batches(&self.schema, &self.pieces)?;
+        let whole = zero_nulls(&concat_batches(&self.schema, &self.pieces)?)?;
         self.pieces.clear();
         writer.write_batch(&whole)
     }
+}
+
+/// `b` with 0 under the nulls of its Float64 columns, as a sweep writes them: a Parquet
+/// reader leaves there what its decoder left, which no reader shows but the bytes of a
+/// file merged from Parquet shards would.
+fn zero_nulls(b: &RecordBatch) -> anyhow::Result<RecordBatch> {
+    let columns = b
+        .columns()
+        .iter()
+        .map(|c| match c.as_any().downcast_ref::<Float64Array>() {
+            Some(a) if a.null_count() > 0 => {
+                Arc::new(a.iter().collect::<Float64Array>()) as ArrayRef
+            }
+            _ => c.clone(),
+        })
+        .collect();
+    Ok(RecordBatch::try_new(b.schema(), columns)?)
 }
