@@ -8,12 +8,11 @@ use super::read::{format_of, open};
 use super::sweep::{Rebatcher, SHARD_KEYS, SweepInfo, SweepWriter, schema};
 use crate::sweep::Shard;
 use anyhow::{anyhow, bail};
-use arrow_array::{Array, ArrayRef, Float64Array, RecordBatch, UInt32Array, UInt64Array};
+use arrow_array::{Array, UInt64Array};
 use arrow_schema::SchemaRef;
 use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 /// Schema metadata that every shard of one sweep shares, with what a message calls it.
 const SHARED_KEYS: [(&str, &str); 8] = [
@@ -260,7 +259,7 @@ fn copy_rows(
             }
             next += 1;
         }
-        batches.push(zero_null_slots(b)?, writer)?;
+        batches.push(b, writer)?;
     }
     if next != f.range.end {
         bail!(
@@ -271,34 +270,4 @@ fn copy_rows(
         );
     }
     Ok(())
-}
-
-/// `b` with 0 in the value slots of its nulls, as the sweep's builders write them: a
-/// Parquet reader leaves other values there, and a merged file must be the one-process
-/// sweep's, byte for byte.
-fn zero_null_slots(b: RecordBatch) -> anyhow::Result<RecordBatch> {
-    use arrow_array::cast::AsArray;
-    use arrow_array::types::{Float64Type, UInt32Type};
-    if b.columns().iter().all(|c| c.null_count() == 0) {
-        return Ok(b);
-    }
-    let columns = b
-        .columns()
-        .iter()
-        .map(|c| match c.data_type() {
-            _ if c.null_count() == 0 => c.clone(),
-            arrow_schema::DataType::Float64 => Arc::new(
-                c.as_primitive::<Float64Type>()
-                    .iter()
-                    .collect::<Float64Array>(),
-            ) as ArrayRef,
-            arrow_schema::DataType::UInt32 => Arc::new(
-                c.as_primitive::<UInt32Type>()
-                    .iter()
-                    .collect::<UInt32Array>(),
-            ),
-            _ => c.clone(),
-        })
-        .collect();
-    Ok(RecordBatch::try_new(b.schema(), columns)?)
 }

@@ -6,7 +6,7 @@ use super::schema::{SweepInfo, schema};
 use crate::output::format::{BATCH_ROWS, Format};
 use crate::output::{AtomicFile, ENGINE, IpcWriter, Out};
 use crate::sweep::Row;
-use arrow_array::{Array, ArrayRef, Float64Array, RecordBatch};
+use arrow_array::{Array, ArrayRef, Float64Array, RecordBatch, UInt32Array};
 use arrow_schema::SchemaRef;
 use arrow_select::concat::concat_batches;
 use parquet::arrow::ArrowWriter;
@@ -228,18 +228,25 @@ impl Rebatcher {
     }
 }
 
-/// `b` with 0 under the nulls of its Float64 columns, as a sweep writes them: a Parquet
+/// `b` with 0 under the nulls of its Float64 and UInt32 columns (the touchdown state's
+/// first leg), as a sweep writes them: a Parquet
 /// reader leaves there what its decoder left, which no reader shows but the bytes of a
 /// file merged from Parquet shards would.
 fn zero_nulls(b: &RecordBatch) -> anyhow::Result<RecordBatch> {
     let columns = b
         .columns()
         .iter()
-        .map(|c| match c.as_any().downcast_ref::<Float64Array>() {
-            Some(a) if a.null_count() > 0 => {
-                Arc::new(a.iter().collect::<Float64Array>()) as ArrayRef
+        .map(|c| {
+            if c.null_count() == 0 {
+                return c.clone();
             }
-            _ => c.clone(),
+            if let Some(a) = c.as_any().downcast_ref::<Float64Array>() {
+                return Arc::new(a.iter().collect::<Float64Array>()) as ArrayRef;
+            }
+            match c.as_any().downcast_ref::<UInt32Array>() {
+                Some(a) => Arc::new(a.iter().collect::<UInt32Array>()),
+                None => c.clone(),
+            }
         })
         .collect();
     Ok(RecordBatch::try_new(b.schema(), columns)?)
