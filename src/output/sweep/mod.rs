@@ -2,20 +2,20 @@
 //! order, as Arrow IPC or Parquet, written in batches of a fixed row count so that the
 //! bytes depend on the scenario and seed alone (not on threads or timing).
 //!
-//! The folder: `schema` (the columns, their units and the provenance in the metadata),
+//! The folder: `schema` (the columns, their units and the provenance in the metadata;
+//! the control loop's in `control`),
 //! `batch` (rows as a record batch), `writer` (the file written as rows come, and a
 //! rebatcher for files made of other files), `read` (the one reader of sweep files: its
 //! metadata, legs, typed columns and outcomes).
 
 mod batch;
+mod control;
 mod read;
 mod schema;
 mod writer;
 
 pub use batch::{batch, control_value};
+pub use control::{CONTROL_COLUMNS, control_columns};
 pub use read::{SweepBatch, SweepFile, leg_count};
-pub use schema::{
-    CONTROL_COLUMNS, LIMITS_COLUMN, SHARD_KEYS, SweepInfo, control_columns, has_limits,
-    parameter_columns, schema,
-};
+pub use schema::{LIMITS_COLUMN, SHARD_KEYS, SweepInfo, has_limits, parameter_columns, schema};
 pub use writer::{Rebatcher, SweepWriter};
