@@ -86,7 +86,7 @@ pub fn run(args: &EnvelopeArgs) -> anyhow::Result<()> {
         dir.join(format!("{stem}-envelope.png")),
         dir.join(format!("{stem}-envelope.csv")),
     );
-    write_text(&csv, &crate::envelope::csv(&e))?;
+    crate::output::write_text(&csv, &crate::envelope::csv(&e))?;
     crate::plot::envelope_chart(&png, &e)?;
     print_out(
         "the envelope",
@@ -114,14 +114,4 @@ fn out_dir(sweep: &Path, given: Option<&Path>) -> anyhow::Result<PathBuf> {
     std::fs::create_dir_all(&dir)
         .map_err(|e| anyhow!("cannot make output folder {}: {e}", dir.display()))?;
     Ok(dir)
-}
-
-/// Writes `text` to `path`, complete or not at all.
-fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
-    use std::io::Write;
-    let (file, mut out) = crate::output::AtomicFile::create(path)?;
-    out.write_all(text.as_bytes())
-        .and_then(|()| out.flush())
-        .map_err(|e| crate::output::cannot_write(path, e))?;
-    file.commit(out)
 }

@@ -10,7 +10,7 @@ use crate::run::KernelChoice;
 use crate::run::study::StudySettings;
 use crate::study::{About, Row, Vary, markdown, write_table};
 use crate::sweep::Shard;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Flags of `touchdown study`.
 #[derive(clap::Args, Debug)]
@@ -105,7 +105,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     let png = dir.join("study.png");
     write_table(&table, &rows, &about)?;
     let text = markdown(&rows, &about);
-    write_text(&md, &text)?;
+    crate::output::write_text(&md, &text)?;
     crate::plot::study_chart(&png, &rows, &about)?;
     print_out(
         "the study's table",
@@ -116,14 +116,4 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             png.display()
         ),
     )
-}
-
-/// Writes `text` to `path`, complete or not at all.
-fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
-    use std::io::Write;
-    let (file, mut out) = crate::output::AtomicFile::create(path)?;
-    out.write_all(text.as_bytes())
-        .and_then(|()| out.flush())
-        .map_err(|e| crate::output::cannot_write(path, e))?;
-    file.commit(out)
 }

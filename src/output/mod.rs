@@ -250,6 +250,16 @@ pub fn remove_unfinished() -> usize {
     files.len()
 }
 
+/// Writes `text` to `path`, complete or not at all (a temporary file renamed once whole).
+pub fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let (file, mut out) = AtomicFile::create(path)?;
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| cannot_write(path, e))?;
+    file.commit(out)
+}
+
 /// The error of a failed write to the output `path` (`-`: standard output), such as a full
 /// disk: the output named once and the reason once (Arrow's and Parquet's errors wrap the
 /// system's and repeat it). An I/O error's kind stays in the error's source, so that a
