@@ -225,9 +225,9 @@ pub(crate) type Chart2d<'a, 'b> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-/// Draws the legend of `chart` at `position`, on a light box.
-pub(crate) fn legend<'a>(
-    chart: &mut Chart2d<'a, 'a>,
+/// Draws the legend of `chart` (linear or log axes) at `position`, on a light box.
+pub(crate) fn legend<'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, CT>,
     position: SeriesLabelPosition,
 ) -> anyhow::Result<()> {
     chart

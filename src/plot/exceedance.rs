@@ -2,7 +2,7 @@
 //! probability that a sample's value exceeds x, log scale, per leg and over all legs with
 //! its 95 % band, and the 99 % and 99.9 % levels the design values are read at.
 
-use super::canvas::{Area, FONT, SERIES_COLOURS, drawing, span};
+use super::canvas::{Area, FONT, SERIES_COLOURS, drawing, legend, span};
 use crate::exceedance::{DESIGN_LEVELS, Quantity, curve};
 use plotters::prelude::*;
 
@@ -121,12 +121,5 @@ fn panel(area: &Area<'_>, q: &Quantity) -> anyhow::Result<()> {
         .label(label)
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(3)));
     // The lower left is empty: small values are exceeded often.
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerLeft)
-        .background_style(WHITE.mix(0.9))
-        .border_style(RGBColor(160, 160, 160))
-        .label_font((FONT, 14))
-        .draw()
-        .map_err(drawing)
+    legend(&mut chart, SeriesLabelPosition::LowerLeft)
 }
