@@ -77,12 +77,13 @@ impl SweepArgs {
         });
         SweepSettings {
             scenario: self.scenario.clone(),
+            scenario_toml: None,
             samples: self.samples,
             seed: self.seed,
             design,
             inputs: self.inputs.clone(),
             keep_columns: self.keep_columns,
-            out: self.output.out.clone(),
+            out: Some(self.output.out.clone()),
             format: self.output.format,
             resume: self.resume.clone(),
             shard: self.shard,
@@ -103,6 +104,8 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         progress: !args.quiet,
         banner: true,
         auto_kernel: matches!(args.kernel, KernelChoice::Auto),
+        keep: false,
+        counter: None,
     };
     let done = execute(&plan, &run)?;
     let wall = done.wall_s;
@@ -124,8 +127,10 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
             100.0 * c as f64 / rows as f64
         ));
     }
-    t.push_str(&format!("wrote {}\n", shown(&plan.out)));
-    say("the sweep's summary", &t, &plan.out)?;
+    // The command line always names an output (`--out`'s default, or `--resume PATH`).
+    let out = plan.out.clone().unwrap_or_else(|| args.output.out.clone());
+    t.push_str(&format!("wrote {}\n", shown(&out)));
+    say("the sweep's summary", &t, &out)?;
     warn_untouched(&done, &plan.scenario, "");
     Ok(())
 }

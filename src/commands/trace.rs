@@ -50,7 +50,7 @@ pub fn run(args: &TraceArgs) -> anyhow::Result<()> {
         seed: args.seed,
         inputs: args.inputs.clone(),
         sample: args.sample,
-        out: args.out.clone(),
+        out: Some(args.out.clone()),
         every: args.every,
     };
     let done = trace(&settings)?;

@@ -21,6 +21,11 @@ pub struct RunOptions<'a> {
     pub banner: bool,
     /// Whether the kernel is the widest the CPU runs (`--kernel auto`), for the banner.
     pub auto_kernel: bool,
+    /// Keep the batches written (`Executed::batches`): a sweep handed over in memory, with
+    /// its file or without one (a plan with no `out`).
+    pub keep: bool,
+    /// Counts the samples computed as they are done, for a caller's own progress display.
+    pub counter: Option<&'a std::sync::atomic::AtomicU64>,
 }
 
 /// What `execute` did.
@@ -43,6 +48,8 @@ pub struct Executed {
     pub untouched_tipped: u64,
     /// Of those, the samples still in their powered descent at the end (never released).
     pub untouched_descending: u64,
+    /// The batches written, in order, where `RunOptions::keep` asked for them.
+    pub batches: Vec<arrow_array::RecordBatch>,
 }
 
 /// Runs `plan` and writes its file. A signal (`run.stop`) ends it with an `Interrupted`
@@ -53,20 +60,22 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     let model = Model::new(scenario);
     let range = plan.shard.map_or(0..samples, |s| s.range(samples));
     let kept = plan.resume.as_ref().map_or(0, |r| r.kept_rows());
-    let mut writer = create_writer(plan, &model)?;
+    let mut writer = create_writer(plan, &model, run.keep)?;
     if run.banner {
         tell(&format!(
             "{}\n",
             banner(plan, &range, kept, threads, run.auto_kernel)
         ));
     }
-    let stale = crate::output::interrupted_path(&plan.out);
-    if plan.resume.is_none() && stale.exists() {
+    let stale = plan.out.as_deref().map(crate::output::interrupted_path);
+    if let (None, Some(stale), Some(out)) = (&plan.resume, &stale, &plan.out)
+        && stale.exists()
+    {
         tell(&format!(
             "touchdown: note: {} holds an interrupted sweep to {}; this run replaces it when \
              it ends (to continue that one instead, stop this run and use {})\n",
             stale.display(),
-            plan.out.display(),
+            out.display(),
             plan.continue_with
         ));
     }
@@ -111,6 +120,9 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
                         u64::from(never && descending && r.summary.outcome != Outcome::Tipped);
                 }
                 computed += rows.len() as u64;
+                if let Some(counter) = run.counter {
+                    counter.store(computed, std::sync::atomic::Ordering::Relaxed);
+                }
                 eta.done(computed);
                 bar.inc(rows.len() as u64);
                 writer.push(rows)
@@ -118,11 +130,12 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         )
     })?;
     bar.finish_and_clear();
-    if ran.end < todo.end {
+    // A stop asked for after the last rows still stops: the file is not finished.
+    if ran.end < todo.end || run.stop.load(std::sync::atomic::Ordering::Relaxed) != 0 {
         return Err(interrupted(plan, writer, run, &range)?);
     }
     // Finishing removes the interrupted run's file it continued (or made obsolete).
-    let rows = writer.finish()?;
+    let (rows, batches) = writer.finish_kept()?;
     Ok(Executed {
         rows,
         computed,
@@ -133,11 +146,13 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         untouched,
         untouched_tipped,
         untouched_descending,
+        batches,
     })
 }
 
-/// The writer of `plan`'s file, its metadata saying what the sweep runs.
-fn create_writer(plan: &SweepPlan, model: &Model) -> anyhow::Result<SweepWriter> {
+/// The writer of `plan`'s file, its metadata saying what the sweep runs; keeping its
+/// batches if `keep` (a plan with no file keeps them whatever `keep` says).
+fn create_writer(plan: &SweepPlan, model: &Model, keep: bool) -> anyhow::Result<SweepWriter> {
     let scenario = &plan.scenario;
     let control = crate::output::sweep::control_columns(scenario);
     let parameters = crate::output::sweep::parameter_columns(scenario);
@@ -160,10 +175,13 @@ fn create_writer(plan: &SweepPlan, model: &Model) -> anyhow::Result<SweepWriter>
         table: &table,
         kept: &kept_columns,
     };
-    Ok(
-        SweepWriter::create(&plan.out, plan.format, model.legs.len(), &info)?
-            .with_table(scenario.table.clone()),
-    )
+    let legs = model.legs.len();
+    let writer = match &plan.out {
+        Some(out) if keep => SweepWriter::create(out, plan.format, legs, &info)?.keeping(),
+        Some(out) => SweepWriter::create(out, plan.format, legs, &info)?,
+        None => SweepWriter::in_memory(legs, &info),
+    };
+    Ok(writer.with_table(scenario.table.clone()))
 }
 
 /// The line naming what the sweep runs: samples, seed, table, kernel, threads, shard and
@@ -185,7 +203,7 @@ fn banner(
     let resume_note = plan.resume.as_ref().map_or(String::new(), |r| {
         format!(
             ", resuming {} at sample {} ({} rows kept of {})",
-            plan.out.display(),
+            plan.out.as_deref().unwrap_or(&r.path).display(),
             range.start + kept,
             kept,
             r.rows
@@ -244,19 +262,23 @@ fn interrupted(
     let signal = run.stop.load(std::sync::atomic::Ordering::Relaxed);
     let (rows, path) = writer.finish_interrupted()?;
     let name = super::signals::signal_name(signal);
-    let message = match path {
-        Some(path) => format!(
+    let message = match (path, &plan.out) {
+        (Some(path), _) => format!(
             "interrupted by {name}: {rows} of {} samples done, in {} (a valid file); \
              continue with: {}",
             range.end - range.start,
             path.display(),
             plan.continue_with
         ),
-        None => format!(
+        (None, Some(out)) => format!(
             "interrupted by {name}: {rows} of {} samples done, written to {} as a valid \
              file; it is not a regular file, so the sweep cannot be resumed from it",
             range.end - range.start,
-            shown(&plan.out)
+            shown(out)
+        ),
+        (None, None) => format!(
+            "interrupted by {name}: {rows} of {} samples done; nothing was kept",
+            range.end - range.start,
         ),
     };
     Ok(Interrupted {

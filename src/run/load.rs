@@ -46,7 +46,7 @@ pub fn load_scenario(
     path: Option<&PathBuf>,
     seed: Option<u64>,
 ) -> anyhow::Result<(Scenario, String)> {
-    let (mut scenario, text) = match path {
+    let (scenario, text) = match path {
         None => (Scenario::default(), DEFAULT_TOML.to_string()),
         Some(p) => {
             let text = std::fs::read_to_string(p)
@@ -54,12 +54,23 @@ pub fn load_scenario(
             (scenario_from_toml(&text)?, text)
         }
     };
+    Ok(seeded(scenario, &text, seed))
+}
+
+/// The scenario of TOML `text` with `seed` applied, and the text to store as its
+/// provenance (`load_scenario` of text rather than a file).
+pub fn scenario_of_text(text: &str, seed: Option<u64>) -> anyhow::Result<(Scenario, String)> {
+    Ok(seeded(scenario_from_toml(text)?, text, seed))
+}
+
+/// `scenario` with `seed` applied if given, and its `text` with the seed that runs.
+fn seeded(mut scenario: Scenario, text: &str, seed: Option<u64>) -> (Scenario, String) {
     if let Some(s) = seed {
         scenario.seed = s;
     }
     // The text stored as provenance is the scenario that runs, seed included.
-    let text = crate::scenario::with_seed(&text, scenario.seed);
-    Ok((scenario, text))
+    let text = crate::scenario::with_seed(text, scenario.seed);
+    (scenario, text)
 }
 
 /// The scenario (with its seed) that a sweep or shard file `path` ran, and its text; checks
@@ -70,7 +81,21 @@ pub fn scenario_of_sweep(
     inputs: Option<&Path>,
 ) -> anyhow::Result<(Scenario, String)> {
     let file = crate::output::sweep::SweepFile::open(path)?;
-    let meta = file.metadata();
+    scenario_of_metadata(file.metadata(), path, index, inputs)
+}
+
+/// The scenario (with its seed) that the sweep whose schema metadata is `meta` ran, and its
+/// text; checks that sample `index` is one of its samples. `path` names the sweep in
+/// messages (its file, or what holds it in memory).
+pub fn scenario_of_metadata(
+    meta: &arrow_schema::Metadata,
+    path: &Path,
+    index: u64,
+    inputs: Option<&Path>,
+) -> anyhow::Result<(Scenario, String)> {
+    if meta.get("touchdown.kind").map(String::as_str) != Some("sweep") {
+        anyhow::bail!("{} is not a sweep of touchdown", path.display());
+    }
     let get = |key: &str| {
         meta.get(key)
             .ok_or_else(|| anyhow::anyhow!("{}: no {key} in its metadata", path.display()))

@@ -16,7 +16,10 @@ pub mod trace;
 mod workers;
 
 pub use execute::{Executed, RunOptions, execute, warn_untouched};
-pub use load::{KernelChoice, load_scenario, scenario_from_toml, scenario_of_sweep};
+pub use load::{
+    KernelChoice, load_scenario, scenario_from_toml, scenario_of_metadata, scenario_of_sweep,
+    scenario_of_text,
+};
 pub use plan::{SweepPlan, SweepSettings, output_format};
 pub use signals::{end_on_signals, signal_name, stop_on_signals};
 pub use workers::{CHUNK, Interrupted, shown, tell, worker_pool};

@@ -1,7 +1,7 @@
 //! What a sweep runs: the settings a command gives, checked into a plan (scenario, samples,
 //! shard, format, kernel), or the plan that finishes an interrupted sweep.
 
-use super::load::{KernelChoice, load_scenario, scenario_from_toml};
+use super::load::{KernelChoice, load_scenario, scenario_from_toml, scenario_of_text};
 use crate::output::format::Format;
 use crate::scenario::{Design, Scenario};
 use crate::sweep::Shard;
@@ -11,8 +11,10 @@ use std::path::{Path, PathBuf};
 /// The settings of a sweep, as the command line gives them (`touchdown sweep`'s flags).
 #[derive(Debug, Clone)]
 pub struct SweepSettings {
-    /// Scenario file; the default scenario without it.
+    /// Scenario file; the default scenario without it (or `scenario_toml`).
     pub scenario: Option<PathBuf>,
+    /// The scenario as TOML text, in place of a file (the Python package's `Scenario`).
+    pub scenario_toml: Option<String>,
     /// Samples; default: the scenario's, or the table's rows.
     pub samples: Option<u64>,
     /// Overrides the scenario's seed.
@@ -23,8 +25,8 @@ pub struct SweepSettings {
     pub inputs: Option<PathBuf>,
     /// Pass the table's other columns through.
     pub keep_columns: bool,
-    /// The sweep file to write.
-    pub out: PathBuf,
+    /// The sweep file to write; none for a sweep kept in memory only (`RunOptions::keep`).
+    pub out: Option<PathBuf>,
     /// The format asked for (default: from the extension of `out`).
     pub format: Option<Format>,
     /// The interrupted sweep to finish (its `out`); the settings above but `inputs` and
@@ -48,8 +50,9 @@ pub struct SweepPlan {
     pub shard: Option<Shard>,
     /// The format of the file.
     pub format: crate::output::format::Format,
-    /// The sweep file it writes (under `OUT.interrupted` if a signal stops it).
-    pub out: PathBuf,
+    /// The sweep file it writes (under `OUT.interrupted` if a signal stops it); none for a
+    /// sweep kept in memory only.
+    pub out: Option<PathBuf>,
     /// The kernel it runs with (the precision is the scenario's).
     pub kernel: KernelKind,
     /// The interrupted sweep whose first rows this one takes over.
@@ -73,8 +76,13 @@ impl SweepPlan {
         if let Some(out) = &args.resume {
             return SweepPlan::resuming(out, args.inputs.as_deref(), args.kernel);
         }
-        crate::output::check_output_path(&args.out)?;
-        let (scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+        if let Some(out) = &args.out {
+            crate::output::check_output_path(out)?;
+        }
+        let (scenario, text) = match &args.scenario_toml {
+            Some(text) => scenario_of_text(text, args.seed)?,
+            None => load_scenario(args.scenario.as_ref(), args.seed)?,
+        };
         // The design as the command line asks, checked as a scenario that says so is, and
         // stored with the scenario's text (`sensitivity` reads it there).
         let (scenario, text) = match args.design {
@@ -112,11 +120,16 @@ impl SweepPlan {
             text,
             samples,
             shard: args.shard,
-            format: output_format(&args.out, args.format)?,
+            format: match &args.out {
+                Some(out) => output_format(out, args.format)?,
+                None => args.format.unwrap_or(Format::Arrow),
+            },
             out: args.out.clone(),
             kernel,
             resume: None,
-            continue_with: format!("touchdown sweep --resume {}", args.out.display()),
+            continue_with: args.out.as_ref().map_or_else(String::new, |out| {
+                format!("touchdown sweep --resume {}", out.display())
+            }),
         })
     }
 
@@ -155,7 +168,7 @@ impl SweepPlan {
             samples: from.samples,
             shard: from.shard,
             format: from.format,
-            out: out.to_path_buf(),
+            out: Some(out.to_path_buf()),
             kernel,
             resume: Some(from),
             continue_with: format!("touchdown sweep --resume {}", out.display()),

@@ -16,6 +16,7 @@ use super::workers::worker_pool;
 use crate::output::format::Format;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
+use crate::scenario::keys::parent_table;
 use crate::study::Vary;
 use crate::sweep::Shard;
 use anyhow::{Context as _, anyhow, bail};
@@ -53,7 +54,7 @@ pub struct StudySettings {
 fn with_value(base: &toml::Table, key: &str, value: f64) -> anyhow::Result<(String, Scenario)> {
     let leaf = key.rsplit('.').next().unwrap_or(key);
     let mut probe = base.clone();
-    let at = parent_table(&mut probe, key)?;
+    let at = parent_table(&mut probe, key).map_err(|e| anyhow!("--vary {key}: {e}"))?;
     let integral = value.fract() == 0.0 && value.abs() < 2f64.powi(53);
     let given = match at.get(leaf) {
         Some(toml::Value::Integer(_)) if !integral => {
@@ -79,7 +80,9 @@ fn with_value(base: &toml::Table, key: &str, value: f64) -> anyhow::Result<(Stri
     let mut first_error = None;
     for v in given {
         let mut table = base.clone();
-        parent_table(&mut table, key)?.insert(leaf.to_string(), v);
+        parent_table(&mut table, key)
+            .map_err(|e| anyhow!("--vary {key}: {e}"))?
+            .insert(leaf.to_string(), v);
         let text = format!(
             "# touchdown study: {key} = {value}\n{}",
             toml::to_string(&table).context("cannot write the scenario of a study value")?
@@ -93,57 +96,6 @@ fn with_value(base: &toml::Table, key: &str, value: f64) -> anyhow::Result<(Stri
     }
     let e = first_error.expect("at least one form was tried");
     bail!("--vary {key}: at {key} = {value}, {e}")
-}
-
-/// The table of `table` that holds `key`'s last name (made where missing); a name of a
-/// list of tables (`[[thrusters]]`) is followed by the index of one, from 0
-/// (`thrusters.2.max_thrust_n`).
-fn parent_table<'t>(table: &'t mut toml::Table, key: &str) -> anyhow::Result<&'t mut toml::Table> {
-    let names: Vec<&str> = key.split('.').collect();
-    let parents = names.len() - 1;
-    let mut at = table;
-    let mut i = 0;
-    while i < parents {
-        let name = names[i];
-        let index = names[i + 1..parents]
-            .first()
-            .filter(|n| n.bytes().all(|b| b.is_ascii_digit()));
-        if index.is_some() && !at.contains_key(name) {
-            bail!("--vary {key}: the scenario has no [[{name}]] to take one of by its index");
-        }
-        let entry = at
-            .entry(name.to_string())
-            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        at = match entry {
-            toml::Value::Table(t) => t,
-            toml::Value::Array(items) => {
-                let n = items.len();
-                let Some(j) = index.and_then(|j| j.parse::<usize>().ok()) else {
-                    bail!(
-                        "--vary {key}: `{name}` is a list of {n} tables in the scenario: name \
-                         one by its index from 0 ({name}.0.KEY to {name}.{}.KEY)",
-                        n.saturating_sub(1)
-                    )
-                };
-                i += 1;
-                match items.get_mut(j) {
-                    Some(toml::Value::Table(t)) => t,
-                    Some(_) => bail!("--vary {key}: `{name}` is not a list of tables"),
-                    None => bail!(
-                        "--vary {key}: the scenario has {n} [[{name}]] (indices 0 to {}), no \
-                         index {j}",
-                        n.saturating_sub(1)
-                    ),
-                }
-            }
-            _ => bail!(
-                "--vary {key}: `{}` is a value in the scenario, not a table of keys",
-                names[..=i].join(".")
-            ),
-        };
-        i += 1;
-    }
-    Ok(at)
 }
 
 /// One value of the study: its scenario and its sweep file.
@@ -377,6 +329,8 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
         progress: !args.quiet,
         banner: false,
         auto_kernel: matches!(args.kernel, KernelChoice::Auto),
+        keep: false,
+        counter: None,
     };
     let shard_note = args
         .shard
@@ -497,7 +451,7 @@ fn run_step(
                 samples,
                 shard: args.shard,
                 format: args.format,
-                out: file.to_path_buf(),
+                out: Some(file.to_path_buf()),
                 kernel,
                 resume: None,
                 continue_with,

@@ -23,8 +23,8 @@ pub struct TraceSettings {
     pub inputs: Option<PathBuf>,
     /// The sample's index.
     pub sample: u64,
-    /// The trace file.
-    pub out: PathBuf,
+    /// The trace file; none for a trace kept in memory (`Traced::batches`).
+    pub out: Option<PathBuf>,
     /// One row every `every` steps.
     pub every: u64,
 }
@@ -39,31 +39,40 @@ pub struct Traced {
     pub summary: Summary,
     /// Rows written.
     pub rows: u64,
+    /// The time history, where it was kept in memory (no `out`).
+    pub batches: Vec<arrow_array::RecordBatch>,
 }
 
 /// Runs the sample `args` names and writes its time history to `args.out`.
 pub fn trace(args: &TraceSettings) -> anyhow::Result<Traced> {
-    crate::output::check_output_path(&args.out)?;
+    if let Some(out) = &args.out {
+        crate::output::check_output_path(out)?;
+    }
     let (scenario, text) = match &args.sweep {
         Some(sweep) => scenario_of_sweep(sweep, args.sample, args.inputs.as_deref())?,
-        None => {
-            let (mut scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
-            if let Some(path) = &args.inputs {
-                // A trace writes no kept columns: the table's other columns are let be.
-                crate::table::attach(&mut scenario, path, true)?;
-                let rows = scenario.table.as_ref().map_or(0, |t| t.rows);
-                if args.sample >= rows {
-                    anyhow::bail!(
-                        "--sample {}: the table of inputs {} has rows 0 to {}",
-                        args.sample,
-                        path.display(),
-                        rows - 1
-                    );
-                }
-            }
-            (scenario, text)
-        }
+        None => scenario_of(args)?,
     };
+    trace_scenario(scenario, &text, args)
+}
+
+/// Runs sample `args.sample` of `scenario` (its TOML `text`, as the trace stores it) and
+/// writes its time history to `args.out`, or keeps it (no `out`); `args`' scenario, seed
+/// and sweep are not read.
+pub fn trace_scenario(
+    scenario: Scenario,
+    text: &str,
+    args: &TraceSettings,
+) -> anyhow::Result<Traced> {
+    if let Some(t) = &scenario.table
+        && args.sample >= t.rows
+    {
+        anyhow::bail!(
+            "--sample {}: the table of inputs {} has rows 0 to {}",
+            args.sample,
+            t.path.display(),
+            t.rows - 1
+        );
+    }
     if scenario.simulation.precision == kernels::isa::Precision::F32 {
         // Written without `eprintln!`, which panics where stderr is gone.
         let _ = writeln!(
@@ -77,18 +86,37 @@ pub fn trace(args: &TraceSettings) -> anyhow::Result<Traced> {
     let sample = sampling::sample(&scenario, args.sample);
     let summary = reference::run(&model, &sample, |_| {});
     let info = TraceInfo {
-        scenario_toml: &text,
+        scenario_toml: text,
         sweep_seed: scenario.seed,
         sample: &sample,
         summary: &summary,
         table: scenario.table.as_deref(),
         control: &crate::output::sweep::control_columns(&scenario),
     };
-    let rows = trace::write(&args.out, &model, &info, args.every)?;
+    let (rows, batches) = match &args.out {
+        Some(out) => (trace::write(out, &model, &info, args.every)?, Vec::new()),
+        None => {
+            let batches = trace::batches(&model, &info, args.every)?;
+            let rows = batches.iter().map(|b| b.num_rows() as u64).sum();
+            (rows, batches)
+        }
+    };
     Ok(Traced {
         scenario,
         sample,
         summary,
         rows,
+        batches,
     })
+}
+
+/// The scenario of a trace not of a sweep file: `args`' scenario file or the default, with
+/// its table of inputs if it names one, and its text.
+fn scenario_of(args: &TraceSettings) -> anyhow::Result<(Scenario, String)> {
+    let (mut scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+    if let Some(path) = &args.inputs {
+        // A trace writes no kept columns: the table's other columns are let be.
+        crate::table::attach(&mut scenario, path, true)?;
+    }
+    Ok((scenario, text))
 }

@@ -19,6 +19,7 @@ mod draws;
 mod error;
 mod initial;
 mod inputs;
+pub mod keys;
 mod lander;
 mod limits;
 mod outcome;

@@ -19,18 +19,26 @@ enum Writer {
     Parquet(ArrowWriter<Out>),
 }
 
-/// Writes rows as they come, in batches of `BATCH_ROWS`, to a file that appears under its
-/// name only after `finish`.
-pub struct SweepWriter {
+/// The file a sweep writer writes, under its name only when finished.
+struct FileOut {
     path: std::path::PathBuf,
     file: AtomicFile,
     sink: Writer,
+}
+
+/// Writes rows as they come, in batches of `BATCH_ROWS`, to a file that appears under its
+/// name only after `finish`; or keeps the batches in memory (`in_memory`, `keeping`), or
+/// both.
+pub struct SweepWriter {
+    out: Option<FileOut>,
     schema: SchemaRef,
     legs: usize,
     pending: Vec<Row>,
     rows: u64,
     /// The table of inputs whose columns pass through (`--keep-columns`).
     table: Option<Arc<crate::scenario::InputTable>>,
+    /// The batches written so far, where they are kept (`keeping`).
+    kept: Option<Vec<RecordBatch>>,
 }
 
 impl SweepWriter {
@@ -41,29 +49,51 @@ impl SweepWriter {
         legs: usize,
         info: &SweepInfo<'_>,
     ) -> anyhow::Result<SweepWriter> {
-        let schema = schema(legs, info);
+        let mut writer = SweepWriter::in_memory(legs, info);
         let (file, out) = AtomicFile::create(path)?;
         let sink = match format {
-            Format::Arrow => Writer::Arrow(IpcWriter::new(&file, out, &schema)?),
+            Format::Arrow => Writer::Arrow(IpcWriter::new(&file, out, &writer.schema)?),
             Format::Parquet => {
                 let props = parquet::file::properties::WriterProperties::builder()
                     .set_compression(parquet::basic::Compression::SNAPPY)
                     .set_max_row_group_row_count(Some(BATCH_ROWS))
                     .set_created_by(ENGINE.to_string())
                     .build();
-                Writer::Parquet(ArrowWriter::try_new(out, schema.clone(), Some(props))?)
+                Writer::Parquet(ArrowWriter::try_new(
+                    out,
+                    writer.schema.clone(),
+                    Some(props),
+                )?)
             }
         };
-        Ok(SweepWriter {
+        writer.out = Some(FileOut {
             path: path.to_path_buf(),
             file,
             sink,
-            schema,
+        });
+        writer.kept = None;
+        Ok(writer)
+    }
+
+    /// A writer of no file that keeps its batches (`finish_kept`): a sweep held in memory.
+    #[must_use]
+    pub fn in_memory(legs: usize, info: &SweepInfo<'_>) -> SweepWriter {
+        SweepWriter {
+            out: None,
+            schema: schema(legs, info),
             legs,
             pending: Vec::with_capacity(BATCH_ROWS),
             rows: 0,
             table: None,
-        })
+            kept: Some(Vec::new()),
+        }
+    }
+
+    /// Keeps the batches it writes as well (`finish_kept`).
+    #[must_use]
+    pub fn keeping(mut self) -> SweepWriter {
+        self.kept.get_or_insert_with(Vec::new);
+        self
     }
 
     /// Passes the kept columns of `table` (`SweepInfo::kept`) through, row by row.
@@ -115,11 +145,16 @@ impl SweepWriter {
     /// be mixed with `push`.
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
         debug_assert!(self.pending.is_empty(), "write_batch after push");
-        let written = match &mut self.sink {
-            Writer::Arrow(w) => w.write(b).map_err(anyhow::Error::from),
-            Writer::Parquet(w) => w.write(b).map_err(anyhow::Error::from),
-        };
-        written.map_err(|e| self.write_error(e))?;
+        if let Some(out) = &mut self.out {
+            let written = match &mut out.sink {
+                Writer::Arrow(w) => w.write(b).map_err(anyhow::Error::from),
+                Writer::Parquet(w) => w.write(b).map_err(anyhow::Error::from),
+            };
+            written.map_err(|e| crate::output::cannot_write(out.file.partial_path(), e))?;
+        }
+        if let Some(kept) = &mut self.kept {
+            kept.push(b.clone());
+        }
         self.rows += b.num_rows() as u64;
         Ok(())
     }
@@ -128,50 +163,57 @@ impl SweepWriter {
     /// interrupted sweep to the same path (`OUT.interrupted`), which this one continued or
     /// makes obsolete. Returns the row count.
     pub fn finish(self) -> anyhow::Result<u64> {
-        Ok(self.close(None)?.0)
+        Ok(self.finish_kept()?.0)
+    }
+
+    /// As `finish`, and returns the batches kept (`in_memory`, `keeping`; none otherwise).
+    pub fn finish_kept(self) -> anyhow::Result<(u64, Vec<RecordBatch>)> {
+        let (rows, _, kept) = self.close(None)?;
+        Ok((rows, kept))
     }
 
     /// Writes the rows pushed so far and closes the file as a valid one, under the name of
     /// an interrupted sweep (`OUT.interrupted`), not the final name. Returns the row count
     /// and that path; `None` where the output is not a regular file (a device, a FIFO,
-    /// standard output): the rows went there, and nothing is made beside it.
+    /// standard output): the rows went there, and nothing is made beside it; and none for
+    /// a writer of no file, whose batches are let go.
     pub fn finish_interrupted(self) -> anyhow::Result<(u64, Option<std::path::PathBuf>)> {
-        let path = crate::output::interrupted_path(self.path());
-        let (rows, made) = self.close(Some(&path))?;
+        let Some(path) = self
+            .out
+            .as_ref()
+            .map(|o| crate::output::interrupted_path(&o.path))
+        else {
+            return Ok((self.rows, None));
+        };
+        let (rows, made, _) = self.close(Some(&path))?;
         Ok((rows, made.then_some(path)))
     }
 
-    /// The path the sweep was asked to write.
-    fn path(&self) -> &Path {
-        &self.path
-    }
-
-    /// An error writing the file, naming it.
-    fn write_error(&self, e: anyhow::Error) -> anyhow::Error {
-        crate::output::cannot_write(self.file.partial_path(), e)
-    }
-
     /// Writes the last rows and closes the file, renamed onto `name` instead of its final
-    /// path if given. Returns the row count, and whether `name` was made.
-    fn close(mut self, name: Option<&Path>) -> anyhow::Result<(u64, bool)> {
+    /// path if given. Returns the row count, whether `name` was made, and the batches kept.
+    fn close(mut self, name: Option<&Path>) -> anyhow::Result<(u64, bool, Vec<RecordBatch>)> {
         self.flush()?;
-        let out = match self.sink {
+        let kept = self.kept.take().unwrap_or_default();
+        let Some(FileOut { path, file, sink }) = self.out.take() else {
+            return Ok((self.rows, false, kept));
+        };
+        let out = match sink {
             Writer::Arrow(w) => w.finish().map_err(anyhow::Error::from),
             Writer::Parquet(w) => w.into_inner().map_err(anyhow::Error::from),
         };
-        let failed = |e| crate::output::cannot_write(self.file.partial_path(), e);
+        let failed = |e| crate::output::cannot_write(file.partial_path(), e);
         let mut out = out.map_err(failed)?;
         std::io::Write::flush(&mut out).map_err(|e| failed(e.into()))?;
         let made = match name {
             None => {
                 // A finished sweep makes an interrupted one to the same path obsolete.
-                let stale = crate::output::interrupted_path(&self.path);
-                self.file.commit_replacing(out, Some(&stale))?;
+                let stale = crate::output::interrupted_path(&path);
+                file.commit_replacing(out, Some(&stale))?;
                 false
             }
-            Some(path) => self.file.commit_as(out, path)?,
+            Some(name) => file.commit_as(out, name)?,
         };
-        Ok((self.rows, made))
+        Ok((self.rows, made, kept))
     }
 }
 

@@ -246,7 +246,7 @@ mod tests {
             seed: None,
             inputs: None,
             sample: 0,
-            out: out.clone(),
+            out: Some(out.clone()),
             every: 100,
         };
         let done = trace(&settings).unwrap();
@@ -263,7 +263,7 @@ mod tests {
         let passive = dir.join("passive.arrow");
         let settings = TraceSettings {
             scenario: None,
-            out: passive.clone(),
+            out: Some(passive.clone()),
             ..settings
         };
         trace(&settings).unwrap();
