@@ -5,9 +5,9 @@
 //! from order statistics. Unweighted: each sample counts once, as the sweep drew it.
 
 use crate::output::columns::Table;
+use crate::output::sweep::SweepSource;
 use crate::stats::wilson_interval;
 use std::fmt::Write as _;
-use std::path::Path;
 
 /// The levels a design value is given at: the share of samples at or below it.
 pub const DESIGN_LEVELS: [f64; 2] = [0.99, 0.999];
@@ -18,6 +18,9 @@ const CONFIDENCE: f64 = 0.95;
 /// One quantity's peaks over the samples: one series per leg (none for a quantity of the
 /// whole lander) and the overall series, each sorted ascending.
 pub struct Quantity {
+    /// Its key in the report's data: the column's name (per leg: without `leg{k}_`), with
+    /// the unit it is given in.
+    pub key: &'static str,
     /// What it is, for the report and the picture.
     pub name: &'static str,
     /// Its unit.
@@ -28,25 +31,46 @@ pub struct Quantity {
     pub overall: Vec<f64>,
 }
 
-/// The quantities: per leg (column `leg{k}_{suffix}`, the name, the unit, and the factor to
-/// that unit) and of the whole lander.
-const PER_LEG: [(&str, &str, &str, f64); 4] = [
-    ("peak_normal_force_n", "peak leg normal force", "N", 1.0),
-    ("peak_axial_force_n", "peak axial strut load", "N", 1.0),
-    ("peak_side_force_n", "peak side strut load", "N", 1.0),
-    ("stroke_m", "damper stroke", "mm", 1e3),
+/// The quantities: per leg (column `leg{k}_{suffix}`, the key, the name, the unit, and the
+/// factor to that unit) and of the whole lander (the column is the key).
+const PER_LEG: [(&str, &str, &str, &str, f64); 4] = [
+    (
+        "peak_normal_force_n",
+        "peak_normal_force_n",
+        "peak leg normal force",
+        "N",
+        1.0,
+    ),
+    (
+        "peak_axial_force_n",
+        "peak_axial_force_n",
+        "peak axial strut load",
+        "N",
+        1.0,
+    ),
+    (
+        "peak_side_force_n",
+        "peak_side_force_n",
+        "peak side strut load",
+        "N",
+        1.0,
+    ),
+    ("stroke_m", "stroke_mm", "damper stroke", "mm", 1e3),
 ];
 const WHOLE: [(&str, &str, &str); 1] =
     [("peak_acceleration_m_s2", "peak CG acceleration", "m/s^2")];
 
-/// The quantities of the sweep file at `path` that it has: the strut loads (files written
-/// before they existed have none), the stroke with dampers (`dampers`), the acceleration.
-pub fn gather(path: &Path, dampers: bool) -> anyhow::Result<Vec<Quantity>> {
-    let mut t = Table::read(path, |n| {
+/// The quantities of the sweep (a file, or held in memory) that it has: the strut loads
+/// (files written before they existed have none), the stroke with dampers (`dampers`), the
+/// acceleration.
+pub fn gather(source: &SweepSource, dampers: bool) -> anyhow::Result<Vec<Quantity>> {
+    let path = source.name();
+    let (schema, batches) = source.batches()?;
+    let mut t = Table::of_batches(&schema, batches, path, |n| {
         n.starts_with("leg") && PER_LEG.iter().any(|q| n.ends_with(q.0)) || n == WHOLE[0].0
     })?;
     let mut quantities = Vec::new();
-    for (suffix, name, unit, factor) in PER_LEG {
+    for (suffix, key, name, unit, factor) in PER_LEG {
         let legs = t.legs(suffix);
         if legs == 0 || (suffix == "stroke_m" && !dampers) {
             continue;
@@ -63,24 +87,31 @@ pub fn gather(path: &Path, dampers: bool) -> anyhow::Result<Vec<Quantity>> {
         let overall = (0..t.rows)
             .map(|i| columns.iter().map(|c| c[i]).fold(0.0, f64::max))
             .collect();
-        quantities.push(Quantity::new(name, unit, columns, overall));
+        quantities.push(Quantity::new(key, name, unit, columns, overall));
     }
     for (column, name, unit) in WHOLE {
         t.column(column, path)?;
         let values = t.columns.remove(column).unwrap_or_default();
-        quantities.push(Quantity::new(name, unit, Vec::new(), values));
+        quantities.push(Quantity::new(column, name, unit, Vec::new(), values));
     }
     Ok(quantities)
 }
 
 impl Quantity {
     /// The quantity with its series sorted.
-    fn new(name: &'static str, unit: &'static str, legs: Vec<Vec<f64>>, overall: Vec<f64>) -> Self {
+    fn new(
+        key: &'static str,
+        name: &'static str,
+        unit: &'static str,
+        legs: Vec<Vec<f64>>,
+        overall: Vec<f64>,
+    ) -> Self {
         let sort = |mut v: Vec<f64>| {
             v.sort_by(f64::total_cmp);
             v
         };
         Quantity {
+            key,
             name,
             unit,
             legs: legs.into_iter().map(sort).collect(),
@@ -187,6 +218,69 @@ pub fn curve(sorted: &[f64], points: usize) -> Vec<(f64, f64, f64, f64)> {
         .collect()
 }
 
+/// The design values of one series of a quantity (a leg's, or over all legs): at each of
+/// `DESIGN_LEVELS` (`None` without samples), and its largest value (0 without samples).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignRow {
+    /// At 99 % and at 99.9 %.
+    pub levels: [Option<DesignValue>; DESIGN_LEVELS.len()],
+    /// The largest value.
+    pub largest: f64,
+}
+
+impl DesignRow {
+    /// The design values of `sorted` (ascending).
+    #[must_use]
+    pub fn of(sorted: &[f64]) -> DesignRow {
+        DesignRow {
+            levels: DESIGN_LEVELS.map(|level| design_value(sorted, level)),
+            largest: sorted.last().copied().unwrap_or(0.0),
+        }
+    }
+}
+
+/// The design values of one quantity: over all legs (or of the whole lander) and per leg.
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuantityValues {
+    /// Its key (`Quantity::key`).
+    pub key: &'static str,
+    /// What it is.
+    pub name: &'static str,
+    /// Its unit.
+    pub unit: &'static str,
+    /// Over all legs (the largest leg of each sample), or of the whole lander.
+    pub overall: DesignRow,
+    /// Per leg `k` (none for a quantity of the whole lander).
+    pub legs: Vec<DesignRow>,
+}
+
+/// What the report's section says: the design values of each quantity of `samples`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignValues {
+    /// The samples they are of.
+    pub samples: usize,
+    /// Per quantity, in the order of `gather`.
+    pub quantities: Vec<QuantityValues>,
+}
+
+/// The design values of `quantities` (`gather`'s).
+#[must_use]
+pub fn design_values(quantities: &[Quantity]) -> DesignValues {
+    DesignValues {
+        samples: quantities.first().map_or(0, |q| q.overall.len()),
+        quantities: quantities
+            .iter()
+            .map(|q| QuantityValues {
+                key: q.key,
+                name: q.name,
+                unit: q.unit,
+                overall: DesignRow::of(&q.overall),
+                legs: q.legs.iter().map(|v| DesignRow::of(v)).collect(),
+            })
+            .collect(),
+    }
+}
+
 /// A design value as a table cell: the value and its interval.
 fn cell(d: Option<DesignValue>) -> String {
     let Some(d) = d else {
@@ -202,36 +296,36 @@ fn cell(d: Option<DesignValue>) -> String {
 }
 
 /// The report's section: per quantity, the design values over all legs and per leg.
-pub fn markdown(quantities: &[Quantity]) -> String {
+#[must_use]
+pub fn markdown(values: &DesignValues) -> String {
     let mut t = String::new();
-    let n = quantities.first().map_or(0, |q| q.overall.len());
     let _ = writeln!(
         t,
         "\n## Load exceedance\n\nThe design value at 99 % (99.9 %) is the value that 1 % (0.1 %) \
-         of the {n} samples exceed; in brackets its 95 % interval from order statistics (no \
+         of the {} samples exceed; in brackets its 95 % interval from order statistics (no \
          assumed distribution). \"all legs\" takes the largest leg of each sample. \
          `touchdown plot` draws the exceedance curves.\n\n\
          | quantity | leg | 99 % (95 % interval) | 99.9 % (95 % interval) | largest |\n\
-         |---|---|---:|---:|---:|"
+         |---|---|---:|---:|---:|",
+        values.samples
     );
-    for q in quantities {
-        let rows = std::iter::once(("all legs".to_string(), &q.overall))
-            .filter(|_| !q.legs.is_empty())
-            .chain(q.legs.iter().enumerate().map(|(k, v)| (k.to_string(), v)));
-        let rows: Vec<(String, &Vec<f64>)> = if q.legs.is_empty() {
+    for q in &values.quantities {
+        let rows: Vec<(String, &DesignRow)> = if q.legs.is_empty() {
             vec![("–".to_string(), &q.overall)]
         } else {
-            rows.collect()
+            std::iter::once(("all legs".to_string(), &q.overall))
+                .chain(q.legs.iter().enumerate().map(|(k, r)| (k.to_string(), r)))
+                .collect()
         };
-        for (leg, v) in rows {
+        for (leg, r) in rows {
             let _ = writeln!(
                 t,
                 "| {} ({}) | {leg} | {} | {} | {:.4} |",
                 q.name,
                 q.unit,
-                cell(design_value(v, DESIGN_LEVELS[0])),
-                cell(design_value(v, DESIGN_LEVELS[1])),
-                v.last().copied().unwrap_or(0.0)
+                cell(r.levels[0]),
+                cell(r.levels[1]),
+                r.largest
             );
         }
     }

@@ -449,18 +449,17 @@ pub fn weigh(
     })
 }
 
-/// The Markdown section of a report on a terrain.
+/// The Markdown section of a report on a terrain (`description`: its `describe()`; `text`:
+/// the distribution as given).
 #[must_use]
-pub fn markdown(w: &Weighted, terrain: &SlopeDistribution, text: &str) -> String {
+pub fn markdown(w: &Weighted, description: &str, text: &str) -> String {
     let mut t = format!(
         "## On a terrain: --slope-distribution {text}\n\nEach sample weighed by the terrain's \
          slope density ({}) over the sweep's at its slope: {} samples worth {:.0} unweighted \
          ones (Kish's effective sample size). 95 % intervals: Wilson's at the sample size of \
          the weighted estimate's variance (delta method).\n\n| outcome | on the terrain | 95 % \
          interval |\n|---|---:|---:|\n",
-        terrain.describe(),
-        w.samples,
-        w.effective_samples
+        description, w.samples, w.effective_samples
     );
     for o in Outcome::listed(w.controlled) {
         let s = &w.shares[o as usize];

@@ -275,7 +275,10 @@ fn sweep_readers() -> Vec<Reader> {
         (
             "report",
             1,
-            Box::new(|p| touchdown::report::report(p, None).map(drop)),
+            Box::new(|p| {
+                let source = touchdown::output::sweep::SweepSource::Path(p.to_path_buf());
+                touchdown::report::report(&source, None).map(drop)
+            }),
         ),
         (
             "--resume",

@@ -7,7 +7,7 @@ use crate::common::{Run, TempDir, set_down_lines, touchdown};
 /// The default gear set down on the surface (attitude against the surface normal, no
 /// errors, released from rest 1 micrometre above it), friction high enough that nothing slides: whether it
 /// stands is decided by the static limit alone.
-const GENTLE: &str = concat!(
+pub(crate) const GENTLE: &str = concat!(
     r#"
 [surface]
 friction_coefficient = 1.5

@@ -27,6 +27,7 @@ mod plot;
 mod python_example;
 mod release_state;
 mod report;
+mod report_json;
 mod scenario_fuzz;
 mod scenarios;
 mod sensitivity;

@@ -1,7 +1,8 @@
-//! `touchdown report`: a sweep file summarised as Markdown, optionally weighed to a
-//! terrain's slope distribution.
+//! `touchdown report`: a sweep file summarised as Markdown (or JSON), optionally weighed
+//! to a terrain's slope distribution.
 
 use super::print::print_out;
+use crate::output::sweep::SweepSource;
 use std::path::PathBuf;
 
 /// Flags of `touchdown report`.
@@ -16,6 +17,9 @@ pub struct ReportArgs {
     /// slope_min_deg, slope_max_deg, probability.
     #[arg(long, value_name = "D")]
     pub slope_distribution: Option<String>,
+    /// The report as one JSON document (the same numbers, unrounded) instead of Markdown.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `touchdown report`.
@@ -26,5 +30,11 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         .map(|d| crate::weighting::SlopeDistribution::parse(d).map(|t| (t, d)))
         .transpose()?;
     let terrain = terrain.as_ref().map(|(t, d)| (t, *d));
-    print_out("the report", &crate::report::report(&args.sweep, terrain)?)
+    let source = SweepSource::Path(args.sweep.clone());
+    let report = if args.json {
+        crate::report::report_json(&source, terrain)?
+    } else {
+        crate::report::report(&source, terrain)?
+    };
+    print_out("the report", &report)
 }

@@ -1,11 +1,11 @@
 //! Any touchdown file read back as named columns (a sweep, shard, trace or study file, Arrow
-//! IPC or Parquet), for what draws or tabulates it.
+//! IPC or Parquet, or a sweep held in memory), for what draws or tabulates it.
 
-use crate::output::read::{format_of, open, outcome_of};
+use crate::output::read::{Batches, format_of, open, outcome_of};
 use anyhow::anyhow;
 use arrow_array::cast::AsArray;
 use arrow_array::types::Float64Type;
-use arrow_schema::DataType;
+use arrow_schema::{DataType, SchemaRef};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -31,6 +31,17 @@ impl Table {
     pub fn read(path: &Path, wanted: impl Fn(&str) -> bool) -> anyhow::Result<Table> {
         let format = format_of(path)?;
         let (schema, batches) = open(path, format)?;
+        Table::of_batches(&schema, batches, path, wanted)
+    }
+
+    /// The columns `wanted` keeps (and the outcome column) of `batches` with `schema`,
+    /// read from the file (or the sweep in memory) that errors name `path`.
+    pub fn of_batches(
+        schema: &SchemaRef,
+        batches: Batches,
+        path: &Path,
+        wanted: impl Fn(&str) -> bool,
+    ) -> anyhow::Result<Table> {
         let meta: HashMap<String, String> = schema
             .metadata()
             .iter()

@@ -127,7 +127,8 @@ pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
     })?;
     written.push(loads);
 
-    let quantities = crate::exceedance::gather(path, s.dampers)?;
+    let source = crate::output::sweep::SweepSource::Path(path.to_path_buf());
+    let quantities = crate::exceedance::gather(&source, s.dampers)?;
     let exceedance = name("exceedance");
     let rows = quantities.len().div_ceil(2) as u32;
     save_png(&exceedance, (1200, 40 + 460 * rows), |root| {

@@ -2,10 +2,10 @@
 //! with dampers, and with `[limits]` the stable samples within them and the samples that
 //! broke each limit.
 
-use super::share_row;
+use super::numbers::Share;
 use crate::output::sweep::SweepBatch;
 use crate::reference::Outcome;
-use crate::scenario::LIMIT_NAMES;
+use crate::scenario::{LIMIT_NAMES, Scenario};
 use arrow_array::{StringArray, UInt32Array};
 use std::fmt::Write as _;
 
@@ -29,7 +29,7 @@ impl<'a> GearColumns<'a> {
 }
 
 /// Samples with a bottomed damper, and with `[limits]` the stable samples that broke none
-/// and the samples that broke each limit (`LIMIT_NAMES`).
+/// and the samples that broke each limit (`LIMIT_NAMES`), counted over the rows.
 #[derive(Default)]
 pub(super) struct Gear {
     bottomed: u64,
@@ -49,42 +49,78 @@ impl Gear {
         }
     }
 
-    /// With dampers (in `scenario`), the samples with a bottomed leg; with `[limits]`, the
-    /// samples that broke each limit given.
-    pub(super) fn write(
-        &self,
-        t: &mut String,
-        total: u64,
-        scenario: Option<&crate::scenario::Scenario>,
-    ) {
+    /// The section of `total` samples of `scenario`: `None` without dampers and `[limits]`.
+    pub(super) fn section(&self, total: u64, scenario: Option<&Scenario>) -> Option<GearSection> {
         let dampers = scenario.is_some_and(|s| s.damper.enabled);
         let limits = scenario.and_then(|s| s.limits);
         if !dampers && limits.is_none() {
-            return;
+            return None;
         }
+        let mut broken = Vec::new();
+        if let (Some(l), Some((_, each))) = (limits, self.limits) {
+            let given = [
+                l.axial_force_n
+                    .map(|x| (x, format!("peak axial strut load above {x} N"))),
+                l.side_force_n
+                    .map(|x| (x, format!("peak side load above {x} N"))),
+                l.acceleration_m_s2
+                    .map(|x| (x, format!("peak CG acceleration above {x} m/s^2"))),
+                l.stroke_margin_m
+                    .map(|x| (x, format!("stroke margin below {x} m, or bottomed"))),
+            ];
+            for ((limit, count), (name, key)) in given.into_iter().zip(each).zip(LIMIT_NAMES) {
+                if let Some((value, text)) = limit {
+                    broken.push(Broken {
+                        name,
+                        key,
+                        value,
+                        text,
+                        samples: Share::of(count, total),
+                    });
+                }
+            }
+        }
+        Some(GearSection {
+            bottomed: dampers.then(|| Share::of(self.bottomed, total)),
+            broken,
+        })
+    }
+}
+
+/// A limit of `[limits]` and the samples that broke it.
+pub(super) struct Broken {
+    /// Its name in `limits_broken` (`axial_force`).
+    pub(super) name: &'static str,
+    /// Its key in `[limits]` (`axial_force_n`).
+    pub(super) key: &'static str,
+    /// Its value there.
+    pub(super) value: f64,
+    /// What breaks it, in words.
+    pub(super) text: String,
+    /// The samples that broke it.
+    pub(super) samples: Share,
+}
+
+/// The gear section of a sweep with dampers or `[limits]`.
+pub(super) struct GearSection {
+    /// With dampers: the samples in which a damper bottomed.
+    pub(super) bottomed: Option<Share>,
+    /// The limits given, each with the samples that broke it.
+    pub(super) broken: Vec<Broken>,
+}
+
+impl GearSection {
+    /// Its Markdown.
+    pub(super) fn write(&self, t: &mut String) {
         let _ = writeln!(
             t,
             "\n## Gear\n\n| | samples | share | 95 % interval |\n|---|---:|---:|---:|"
         );
-        if dampers {
-            share_row(t, "a damper bottomed", self.bottomed, total);
+        if let Some(bottomed) = &self.bottomed {
+            bottomed.row(t, "a damper bottomed");
         }
-        if let (Some(l), Some((_, each))) = (limits, self.limits) {
-            let given = [
-                l.axial_force_n
-                    .map(|x| format!("peak axial strut load above {x} N")),
-                l.side_force_n
-                    .map(|x| format!("peak side load above {x} N")),
-                l.acceleration_m_s2
-                    .map(|x| format!("peak CG acceleration above {x} m/s^2")),
-                l.stroke_margin_m
-                    .map(|x| format!("stroke margin below {x} m, or bottomed")),
-            ];
-            for ((text, count), (name, _)) in given.iter().zip(each).zip(LIMIT_NAMES) {
-                if let Some(text) = text {
-                    share_row(t, &format!("broke `{name}`: {text}"), count, total);
-                }
-            }
+        for b in &self.broken {
+            b.samples.row(t, &format!("broke `{}`: {}", b.name, b.text));
         }
     }
 }

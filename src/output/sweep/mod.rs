@@ -6,7 +6,7 @@
 //! the control loop's in `control`),
 //! `batch` (rows as a record batch), `writer` (the file written as rows come, and a
 //! rebatcher for files made of other files), `read` (the one reader of sweep files: its
-//! metadata, legs, typed columns and outcomes).
+//! metadata, legs, typed columns and outcomes; and of sweeps held in memory).
 
 mod batch;
 mod control;
@@ -16,6 +16,6 @@ mod writer;
 
 pub use batch::{batch, control_value};
 pub use control::{CONTROL_COLUMNS, control_columns};
-pub use read::{SweepBatch, SweepFile, leg_count};
+pub use read::{SweepBatch, SweepFile, SweepSource, leg_count};
 pub use schema::{LIMITS_COLUMN, SHARD_KEYS, SweepInfo, has_limits, parameter_columns, schema};
 pub use writer::{Rebatcher, SweepWriter};

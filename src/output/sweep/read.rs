@@ -1,7 +1,8 @@
 //! The one reader of sweep files: a sweep (or shard) file of touchdown opened, its
 //! metadata and leg count, and its batches with typed columns by name and the outcome of
 //! each row, for every command that reads a sweep's columns (report, compare,
-//! sensitivity, study, trace --sweep).
+//! sensitivity, study, trace --sweep); and a sweep held in memory (`SweepSource::Memory`:
+//! Python's), read as a file is.
 
 use crate::output::read::{Batches, format_of, open, outcome_of};
 use crate::reference::Outcome;
@@ -18,26 +19,84 @@ pub struct SweepFile {
     batches: Batches,
 }
 
+/// Where the rows of a sweep come from: a sweep (or shard) file, or record batches held
+/// in memory with the schema and metadata such a file has. Opened as often as a reader
+/// needs (`open`, `batches`): each time from the first row.
+pub enum SweepSource {
+    /// A sweep (or shard) file, Arrow IPC or Parquet.
+    Path(PathBuf),
+    /// A sweep held in memory.
+    Memory {
+        /// What messages call it, where they name a file's path.
+        name: String,
+        /// Its schema, with the metadata of a sweep file (`touchdown.kind = sweep`, ...).
+        schema: SchemaRef,
+        /// Its rows, in sample order.
+        batches: Vec<RecordBatch>,
+    },
+}
+
+impl SweepSource {
+    /// What messages call it: the file's path, or the name of the sweep in memory.
+    #[must_use]
+    pub fn name(&self) -> &Path {
+        match self {
+            SweepSource::Path(path) => path,
+            SweepSource::Memory { name, .. } => Path::new(name),
+        }
+    }
+
+    /// Its schema and batches, from the first row; anything but a sweep is refused, saying
+    /// what it is.
+    pub fn batches(&self) -> anyhow::Result<(SchemaRef, Batches)> {
+        let (schema, batches) = match self {
+            SweepSource::Path(path) => open(path, format_of(path)?)?,
+            SweepSource::Memory {
+                schema, batches, ..
+            } => (
+                schema.clone(),
+                Box::new(batches.clone().into_iter().map(Ok)) as Batches,
+            ),
+        };
+        let kind = schema.metadata().get("touchdown.kind").map(String::as_str);
+        let name = self.name().display();
+        match (kind, self) {
+            (Some("sweep"), _) => Ok((schema, batches)),
+            (Some(kind), SweepSource::Path(_)) => {
+                bail!("{name} is not a sweep file of touchdown (it is a {kind} file)")
+            }
+            (None, SweepSource::Path(_)) => bail!("{name} is not a sweep file of touchdown"),
+            (Some(kind), SweepSource::Memory { .. }) => bail!(
+                "{name} is not a sweep of touchdown: its schema's metadata says touchdown.kind \
+                 = {kind}"
+            ),
+            (None, SweepSource::Memory { .. }) => bail!(
+                "{name} is not a sweep of touchdown: its schema has no metadata touchdown.kind \
+                 = sweep (a table read from a sweep file has it, unless a conversion dropped \
+                 the schema's metadata)"
+            ),
+        }
+    }
+
+    /// Opened as a `SweepFile`.
+    pub fn open(&self) -> anyhow::Result<SweepFile> {
+        let (schema, batches) = self.batches()?;
+        Ok(SweepFile {
+            path: self.name().to_path_buf(),
+            schema,
+            batches,
+        })
+    }
+}
+
 impl SweepFile {
     /// Opens the sweep (or shard) file at `path`; any other file is refused, saying what
     /// it is.
     pub fn open(path: &Path) -> anyhow::Result<SweepFile> {
-        let (schema, batches) = open(path, format_of(path)?)?;
-        match schema.metadata().get("touchdown.kind").map(String::as_str) {
-            Some("sweep") => Ok(SweepFile {
-                path: path.to_path_buf(),
-                schema,
-                batches,
-            }),
-            Some(kind) => bail!(
-                "{} is not a sweep file of touchdown (it is a {kind} file)",
-                path.display()
-            ),
-            None => bail!("{} is not a sweep file of touchdown", path.display()),
-        }
+        SweepSource::Path(path.to_path_buf()).open()
     }
 
-    /// The path it was opened at.
+    /// The path it was opened at (of a sweep held in memory: its name).
     #[must_use]
     pub fn path(&self) -> &Path {
         &self.path
