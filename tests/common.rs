@@ -257,8 +257,9 @@ pub(crate) fn check_bad_input(command: &str, case: &BadInput, never: &[&str]) ->
 // ---------------------------------------------------------------------------------------
 // Python readers.
 
-/// What the Python tests import: the readers, and matplotlib for examples/python.
-const PYTHON_MODULES: &str = "pandas, polars, pyarrow, matplotlib";
+/// What the Python tests import: the readers, matplotlib for examples/python, and what the
+/// Python package is built and tested with (tests/python_package.rs).
+const PYTHON_MODULES: &str = "pandas, polars, pyarrow, matplotlib, numpy, maturin, pytest, nbclient, nbformat, ipykernel, tqdm";
 
 /// The interpreter the Python tests run: `TOUCHDOWN_PYTHON` if set (it must have the
 /// packages), else the one of a virtual environment under `target/` that the tests make on

@@ -25,6 +25,7 @@ mod paired_sweeps;
 mod parameters;
 mod plot;
 mod python_example;
+mod python_package;
 mod release_state;
 mod report;
 mod report_json;
