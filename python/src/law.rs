@@ -184,19 +184,24 @@ impl PyLaw {
         let Some(value) = attribute(out, name)? else {
             return Ok(None);
         };
-        let np = numpy_module(py)?;
-        let a = np.call_method1("asarray", (value, np.getattr("float64")?))?;
-        let a = np.call_method1("broadcast_to", (a, (n, 3))).map_err(|_| {
-            self.shape_error(
-                py,
-                name,
-                &out.getattr(name).ok(),
-                &format!("({n}, 3) or (3,)"),
-            )
-        })?;
-        let a = np.call_method1("ascontiguousarray", (a,))?;
-        let a = a.cast_into::<PyArray2<f64>>()?;
-        let values = a.readonly().as_slice()?.to_vec();
+        let values = match value.cast::<PyArray2<f64>>() {
+            // What a numpy law returns: taken as it is.
+            Ok(a) if a.shape() == [n, 3] && a.is_c_contiguous() => {
+                a.readonly().as_slice()?.to_vec()
+            }
+            _ => {
+                let np = numpy_module(py)?;
+                let a = np.call_method1("asarray", (&value, np.getattr("float64")?))?;
+                let a = np.call_method1("broadcast_to", (a, (n, 3))).map_err(|_| {
+                    self.shape_error(py, name, &value, &format!("({n}, 3) or (3,)"))
+                })?;
+                let a = np.call_method1("ascontiguousarray", (a,))?;
+                a.cast_into::<PyArray2<f64>>()?
+                    .readonly()
+                    .as_slice()?
+                    .to_vec()
+            }
+        };
         if let Some(bad) = values.iter().position(|v| !v.is_finite()) {
             return Err(PyValueError::new_err(format!(
                 "control law {:?}: {name} of lander {} is {}, not a finite number",
@@ -218,19 +223,22 @@ impl PyLaw {
         let Some(value) = attribute(out, "done")? else {
             return Ok(None);
         };
-        let np = numpy_module(py)?;
-        let a = np.call_method1("asarray", (value, np.getattr("bool_")?))?;
-        let a = np.call_method1("broadcast_to", (a, (n,))).map_err(|_| {
-            self.shape_error(
-                py,
-                "done",
-                &out.getattr("done").ok(),
-                &format!("({n},) or one bool"),
-            )
-        })?;
-        let a = np.call_method1("ascontiguousarray", (a,))?;
-        let a = a.cast_into::<PyArray1<bool>>()?;
-        Ok(Some(a.readonly().as_slice()?.to_vec()))
+        let flags = match value.cast::<PyArray1<bool>>() {
+            Ok(a) if a.shape() == [n] && a.is_c_contiguous() => a.readonly().as_slice()?.to_vec(),
+            _ => {
+                let np = numpy_module(py)?;
+                let a = np.call_method1("asarray", (&value, np.getattr("bool_")?))?;
+                let a = np.call_method1("broadcast_to", (a, (n,))).map_err(|_| {
+                    self.shape_error(py, "done", &value, &format!("({n},) or one bool"))
+                })?;
+                let a = np.call_method1("ascontiguousarray", (a,))?;
+                a.cast_into::<PyArray1<bool>>()?
+                    .readonly()
+                    .as_slice()?
+                    .to_vec()
+            }
+        };
+        Ok(Some(flags))
     }
 
     /// The error of a command field of the wrong shape.
@@ -238,12 +246,11 @@ impl PyLaw {
         &self,
         py: Python<'_>,
         name: &str,
-        value: &Option<Bound<'_, PyAny>>,
+        value: &Bound<'_, PyAny>,
         wanted: &str,
     ) -> PyErr {
-        let shape = value
-            .as_ref()
-            .and_then(|v| numpy_module(py).ok()?.call_method1("shape", (v,)).ok())
+        let shape = numpy_module(py)
+            .and_then(|np| np.call_method1("shape", (value,)))
             .map_or("?".to_string(), |s| s.to_string());
         PyValueError::new_err(format!(
             "control law {:?}: {name} has shape {shape}; expected {wanted}",

@@ -27,6 +27,18 @@ pub struct Scenario {
 }
 
 impl Scenario {
+    /// Takes `table` for the scenario if it reads as one (else the command line's message,
+    /// and the scenario as it was).
+    fn replace(&mut self, table: toml::Table) -> PyResult<()> {
+        let text = toml::to_string(&table)
+            .map_err(|e| ScenarioError::new_err(format!("cannot write the scenario: {e}")))?;
+        touchdown::run::scenario_from_toml(&text)
+            .map_err(|e| ScenarioError::new_err(e.to_string()))?;
+        self.table = table;
+        self.text = text;
+        Ok(())
+    }
+
     /// The scenario of `text`, checked.
     fn of(text: String) -> PyResult<Scenario> {
         touchdown::run::scenario_from_toml(&text)
@@ -85,13 +97,24 @@ impl Scenario {
         let value = to_toml(value, key)?;
         let mut table = self.table.clone();
         keys::set(&mut table, key, value).map_err(|e| ScenarioError::new_err(format!("{e:#}")))?;
-        let text = toml::to_string(&table)
-            .map_err(|e| ScenarioError::new_err(format!("cannot write the scenario: {e}")))?;
-        touchdown::run::scenario_from_toml(&text)
-            .map_err(|e| ScenarioError::new_err(e.to_string()))?;
-        self.table = table;
-        self.text = text;
-        Ok(())
+        self.replace(table)
+    }
+
+    /// Removes a key by its dotted name: its default holds again (checked as a set is).
+    fn __delitem__(&mut self, key: &str) -> PyResult<()> {
+        let mut table = self.table.clone();
+        let leaf = key.rsplit('.').next().unwrap_or(key);
+        let removed = keys::get(&table, key).is_some()
+            && keys::parent_table(&mut table, key)
+                .map_err(|e| ScenarioError::new_err(format!("{e:#}")))?
+                .remove(leaf)
+                .is_some();
+        if !removed {
+            return Err(PyKeyError::new_err(format!(
+                "the scenario does not give `{key}`"
+            )));
+        }
+        self.replace(table)
     }
 
     /// Whether the scenario gives `key`.

@@ -98,3 +98,16 @@ def test_help_and_hints():
     assert "dotted" in touchdown.Scenario.__doc__
     assert touchdown.sweep.__doc__ and "pyarrow.Table" in touchdown.sweep.__doc__
     assert touchdown.sweep.__annotations__["return"] in ("pa.Table", touchdown.pa.Table)
+
+
+def test_a_key_removed_takes_its_default_again():
+    s = touchdown.Scenario.default()
+    s["surface.friction_coefficient"] = 0.3
+    del s["surface.friction_coefficient"]
+    assert "surface.friction_coefficient" not in s
+    with pytest.raises(KeyError):
+        del s["surface.friction_coefficient"]
+    # The default holds: a sweep runs as the default scenario with the key at 0.6 does.
+    again = touchdown.Scenario.default()
+    again["surface.friction_coefficient"] = 0.6
+    assert touchdown.sweep(s, samples=50, progress=False).equals(touchdown.sweep(again, samples=50, progress=False))

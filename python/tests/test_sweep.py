@@ -141,3 +141,12 @@ def test_the_gil_is_released_while_the_kernels_run():
     worker.join()
     assert result["table"].num_rows == 40_000
     assert len(ticks) > 10
+
+
+def test_counts_as_the_command_line_takes_them():
+    # 1e2 as a float is a whole number, as `--samples 1e2` is.
+    assert touchdown.sweep(samples=1e2, seed=2.0, progress=False).num_rows == 100
+    with pytest.raises(ValueError, match="not a whole number"):
+        touchdown.sweep(samples=10.5, progress=False)
+    with pytest.raises(TypeError):
+        touchdown.sweep(samples=True, progress=False)

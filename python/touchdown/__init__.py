@@ -26,6 +26,7 @@ import contextlib
 import dataclasses
 import importlib.util
 import json
+import operator
 import os
 import sys
 import tempfile
@@ -82,6 +83,19 @@ class Command:
     force_b_n: Any = None
     torque_b_n_m: Any = None
     done: Any = None
+
+
+def _whole(name: str, value: Any) -> Optional[int]:
+    """A count or seed as a whole number: an int, or a float that is one (``1e6``)."""
+    if value is None:
+        return None
+    if isinstance(value, bool):
+        raise TypeError(f"{name}: expected a whole number, not a bool")
+    if isinstance(value, float):
+        if not value.is_integer():
+            raise ValueError(f"{name}: {value} is not a whole number")
+        return int(value)
+    return operator.index(value)
 
 
 def _scenario_text(scenario: Union[None, Scenario, PathLike]) -> str:
@@ -178,7 +192,7 @@ class _Bar:
 def sweep(
     scenario: Union[None, Scenario, PathLike] = None,
     *,
-    samples: Optional[int] = None,
+    samples: Union[None, int, float] = None,
     seed: Optional[int] = None,
     threads: Optional[int] = None,
     design: Optional[str] = None,
@@ -193,8 +207,8 @@ def sweep(
 
     Args:
         scenario: A ``Scenario``, the path of a scenario file, or None for the default.
-        samples: Number of samples (default: the scenario's ``samples``, or the rows of
-            ``inputs``).
+        samples: Number of samples, a whole number (``100_000`` or ``1e5``; default: the
+            scenario's ``samples``, or the rows of ``inputs``).
         seed: The sweep's seed (default: the scenario's).
         threads: Worker threads (default: one per core).
         design: ``"independent"``, ``"sobol-sequence"`` or ``"sobol-indices"`` (default:
@@ -229,9 +243,9 @@ def sweep(
     with _inputs_path(inputs) as inputs_path:
         run = _touchdown.SweepRun(
             text,
-            samples=samples,
-            seed=seed,
-            threads=threads,
+            samples=_whole("samples", samples),
+            seed=_whole("seed", seed),
+            threads=_whole("threads", threads),
             design=design,
             inputs=inputs_path,
             keep_columns=keep_columns,
@@ -327,17 +341,17 @@ def trace(
     with _inputs_path(inputs) as inputs_path:
         kwargs["inputs"] = inputs_path
         if source is None or isinstance(source, Scenario):
-            kwargs.update(scenario_toml=_scenario_text(source), seed=seed)
+            kwargs.update(scenario_toml=_scenario_text(source), seed=_whole("seed", seed))
         elif isinstance(source, (str, os.PathLike)):
             if Path(source).suffix.lower() == ".toml":
-                kwargs.update(scenario_toml=_scenario_text(source), seed=seed)
+                kwargs.update(scenario_toml=_scenario_text(source), seed=_whole("seed", seed))
             else:
                 kwargs["sweep"] = os.fspath(source)
         else:
             kwargs["metadata"] = _sweep_metadata(source)
         if seed is not None and "scenario_toml" not in kwargs:
             raise TouchdownError("seed: a sweep's sample has the sweep's seed; drop seed=")
-        text, reader = _touchdown.trace(sample, **kwargs)
+        text, reader = _touchdown.trace(_whole("sample", sample), **kwargs)
         return Trace(table=reader.read_all(), text=text)
 
 
