@@ -43,6 +43,10 @@ def test_the_python_law_lands_as_the_rust_law(scenario, root_dir, tmp_path):
     for name in rust.column_names:
         assert python.column(name).equals(rust.column(name)), name
     assert len(set(rust.column("outcome").to_pylist())) >= 2
+    # On two workers (a Python law's sweep runs on one unless told), whose calls take
+    # turns: the same rows, whatever the grouping of landers into calls.
+    two = touchdown.sweep(scenario, samples=200, threads=2, progress=False)
+    assert two.equals(rust.slice(0, 200))
 
 
 def test_a_trace_with_the_python_law_is_its_sweep_row(scenario, root_dir, tmp_path):

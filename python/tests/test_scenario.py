@@ -95,6 +95,7 @@ def test_other_bad_input(tmp_path):
 
 
 def test_help_and_hints():
+    assert touchdown.__version__ == touchdown.ENGINE.split()[-1]
     assert "dotted" in touchdown.Scenario.__doc__
     assert touchdown.sweep.__doc__ and "pyarrow.Table" in touchdown.sweep.__doc__
     assert touchdown.sweep.__annotations__["return"] in ("pa.Table", touchdown.pa.Table)

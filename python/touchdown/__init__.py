@@ -46,6 +46,9 @@ from ._touchdown import (
     registered_laws,
 )
 
+#: The package's version: the engine's (``ENGINE`` is "touchdown VERSION", as files record).
+__version__ = ENGINE.split()[-1]
+
 __all__ = [
     "ENGINE",
     "Command",
@@ -210,7 +213,8 @@ def sweep(
         samples: Number of samples, a whole number (``100_000`` or ``1e5``; default: the
             scenario's ``samples``, or the rows of ``inputs``).
         seed: The sweep's seed (default: the scenario's).
-        threads: Worker threads (default: one per core).
+        threads: Worker threads (default: one per core; one where the scenario's law is a
+            Python law, which runs one call at a time under the GIL).
         design: ``"independent"``, ``"sobol-sequence"`` or ``"sobol-indices"`` (default:
             the scenario's).
         inputs: Your own inputs, one sample per row: a path (CSV, Arrow or Parquet) or
