@@ -46,7 +46,7 @@ enum Ended {
 impl SweepRun {
     /// Plans the sweep as `touchdown sweep` would with these flags and starts it.
     #[new]
-    #[pyo3(signature = (scenario_toml, samples=None, seed=None, threads=None, design=None, inputs=None, keep_columns=false, out=None, format=None, kernel=None))]
+    #[pyo3(signature = (scenario_toml, samples=None, seed=None, threads=None, design=None, inputs=None, keep_columns=false, out=None, format=None, kernel=None, keep=true))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         scenario_toml: String,
@@ -59,7 +59,13 @@ impl SweepRun {
         out: Option<PathBuf>,
         format: Option<&str>,
         kernel: Option<&str>,
+        keep: bool,
     ) -> PyResult<SweepRun> {
+        if !keep && out.is_none() {
+            return Err(pyo3::exceptions::PyValueError::new_err(
+                "table=False keeps no rows: give out= the file to write them to",
+            ));
+        }
         let design = design
             .map(|d| match d {
                 "independent" => Ok(Design::Independent),
@@ -129,7 +135,7 @@ impl SweepRun {
                     progress: false,
                     banner: false,
                     auto_kernel: matches!(kernel, KernelChoice::Auto),
-                    keep: true,
+                    keep,
                     counter: Some(&thread_counter),
                 };
                 let done = execute(&plan, &run).map(|mut e| {
@@ -211,8 +217,9 @@ impl SweepRun {
     }
 
     /// The sweep as a `pyarrow.RecordBatchReader` (its schema with the file's metadata),
-    /// once `wait` says it is over; raises what ended it otherwise.
-    fn result<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+    /// once `wait` says it is over, or None for a sweep that kept no rows (`keep` false);
+    /// raises what ended it otherwise.
+    fn result<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
         let mut ended = self
             .ended
             .lock()
@@ -233,7 +240,10 @@ impl SweepRun {
             .take()
             .ok_or_else(|| TouchdownError::new_err("the sweep's result was taken already"))?
             .map_err(|e| to_py(&e))?;
-        reader(batches)?.into_pyarrow(py)
+        if batches.is_empty() {
+            return Ok(None);
+        }
+        reader(batches)?.into_pyarrow(py).map(Some)
     }
 }
 

@@ -150,3 +150,13 @@ def test_counts_as_the_command_line_takes_them():
         touchdown.sweep(samples=10.5, progress=False)
     with pytest.raises(TypeError):
         touchdown.sweep(samples=True, progress=False)
+
+
+def test_a_file_only_sweep_keeps_no_table(cli, tmp_path):
+    out = tmp_path / "only.arrow"
+    assert touchdown.sweep(samples=1000, seed=3, out=out, table=False, progress=False) is None
+    cli_file = tmp_path / "cli.arrow"
+    run(cli, "sweep", "--samples", "1000", "--seed", "3", "--quiet", "--out", cli_file)
+    assert out.read_bytes() == cli_file.read_bytes()
+    with pytest.raises(ValueError, match="give out="):
+        touchdown.sweep(samples=10, table=False, progress=False)

@@ -205,7 +205,8 @@ def sweep(
     format: Optional[str] = None,
     kernel: str = "auto",
     progress: Optional[bool] = None,
-) -> pa.Table:
+    table: bool = True,
+) -> Optional[pa.Table]:
     """Runs a Monte Carlo sweep, as ``touchdown sweep`` does, and returns its table.
 
     Args:
@@ -231,10 +232,14 @@ def sweep(
             or ``"portable"``.
         progress: Show a progress bar (tqdm where installed); default: on a terminal or in
             Jupyter.
+        table: Return the table (held in memory: about 550 bytes a sample of the default
+            scenario). ``table=False`` with ``out=`` writes the file only, in the command
+            line's bounded memory, and returns None.
 
     Returns:
         The sweep as a ``pyarrow.Table``, one row per sample in sample order, its schema
-        metadata that of the file (``pl.from_arrow(table)`` makes a polars frame).
+        metadata that of the file (``pl.from_arrow(table)`` makes a polars frame); None
+        with ``table=False``.
 
     Raises:
         ScenarioError: The scenario is refused.
@@ -256,6 +261,7 @@ def sweep(
             out=None if out is None else os.fspath(out),
             format=format,
             kernel=kernel,
+            keep=table,
         )
         bar = _Bar(run.total, progress)
         try:
@@ -273,7 +279,8 @@ def sweep(
             raise
         bar.update(run.done)
         bar.close()
-        return run.result().read_all()
+        reader = run.result()
+        return None if reader is None else reader.read_all()
 
 
 @dataclasses.dataclass
