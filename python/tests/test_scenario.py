@@ -98,7 +98,7 @@ def test_help_and_hints():
     assert touchdown.__version__ == touchdown.ENGINE.split()[-1]
     assert "dotted" in touchdown.Scenario.__doc__
     assert touchdown.sweep.__doc__ and "pyarrow.Table" in touchdown.sweep.__doc__
-    assert touchdown.sweep.__annotations__["return"] in ("pa.Table", touchdown.pa.Table)
+    assert "pa.Table" in touchdown.sweep.__annotations__["return"]
 
 
 def test_a_key_removed_takes_its_default_again():
