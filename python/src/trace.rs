@@ -6,7 +6,8 @@ use arrow_pyarrow::IntoPyArrow;
 use pyo3::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use touchdown::run::trace::{TraceSettings, trace_scenario};
+use touchdown::run::trace::{self as run_trace, TraceSettings, trace_scenario};
+use touchdown::scenario::DEFAULT_TOML;
 
 /// Runs sample `sample` of a scenario (its TOML text, `seed` overriding its own), of the
 /// sweep file `sweep`, or of the sweep whose schema metadata is `metadata` (a table held in
@@ -32,34 +33,26 @@ pub fn trace<'py>(
     }
     crate::law::clear();
     let settings = TraceSettings {
-        sweep: None,
+        sweep,
         scenario: None,
+        // The default scenario where neither a text nor a sweep is given.
+        scenario_toml: Some(scenario_toml.unwrap_or_else(|| DEFAULT_TOML.to_string())),
         seed,
-        inputs: inputs.clone(),
+        inputs,
         sample,
         out: None,
         every,
     };
-    let done = py.detach(|| -> anyhow::Result<_> {
-        let (scenario, text) = match (&sweep, &metadata, &scenario_toml) {
-            (Some(path), ..) => touchdown::run::scenario_of_sweep(path, sample, inputs.as_deref())?,
-            (None, Some(meta), _) => touchdown::run::scenario_of_metadata(
-                &arrow_schema::Metadata::from(meta.clone()),
-                Path::new("the sweep table"),
-                sample,
-                inputs.as_deref(),
-            )?,
-            (None, None, text) => {
-                let text = text.as_deref().unwrap_or(touchdown::scenario::DEFAULT_TOML);
-                let (mut scenario, text) = touchdown::run::scenario_of_text(text, seed)?;
-                if let Some(path) = &inputs {
-                    // A trace writes no kept columns: the table's other columns are let be.
-                    touchdown::table::attach(&mut scenario, path, true)?;
-                }
-                (scenario, text)
-            }
-        };
-        trace_scenario(scenario, &text, &settings)
+    let done = py.detach(|| match &metadata {
+        // A sweep held in memory: its scenario from its schema's metadata.
+        Some(meta) if settings.sweep.is_none() => touchdown::run::scenario_of_metadata(
+            &arrow_schema::Metadata::from(meta.clone()),
+            Path::new("the sweep table"),
+            sample,
+            settings.inputs.as_deref(),
+        )
+        .and_then(|(scenario, text)| trace_scenario(scenario, &text, &settings)),
+        _ => run_trace::trace(&settings),
     });
     if let Some(e) = crate::law::take_error() {
         return Err(e);

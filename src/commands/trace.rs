@@ -47,6 +47,7 @@ pub fn run(args: &TraceArgs) -> anyhow::Result<()> {
     let settings = TraceSettings {
         sweep: args.sweep.clone(),
         scenario: args.scenario.clone(),
+        scenario_toml: None,
         seed: args.seed,
         inputs: args.inputs.clone(),
         sample: args.sample,

@@ -1,7 +1,7 @@
 //! One sample run with the reference model and its time history written: the scenario
 //! from a sweep file, a scenario file or the default, the sample at an index.
 
-use super::load::{load_scenario, scenario_of_sweep};
+use super::load::{load_scenario, scenario_of_sweep, scenario_of_text};
 use crate::output::trace::{self, TraceInfo};
 use crate::reference::{self, Model, Summary};
 use crate::sampling;
@@ -15,8 +15,11 @@ use std::path::PathBuf;
 pub struct TraceSettings {
     /// The sweep or shard file whose scenario and seed the trace runs.
     pub sweep: Option<PathBuf>,
-    /// Scenario file (without it and without `sweep`: the default scenario).
+    /// Scenario file (without it and without `sweep`: the default scenario, or
+    /// `scenario_toml`).
     pub scenario: Option<PathBuf>,
+    /// The scenario as TOML text, in place of a file (the Python package's `Scenario`).
+    pub scenario_toml: Option<String>,
     /// Overrides the scenario's seed.
     pub seed: Option<u64>,
     /// The table of inputs the sweep ran, or the one to take row `sample` of.
@@ -113,7 +116,10 @@ pub fn trace_scenario(
 /// The scenario of a trace not of a sweep file: `args`' scenario file or the default, with
 /// its table of inputs if it names one, and its text.
 fn scenario_of(args: &TraceSettings) -> anyhow::Result<(Scenario, String)> {
-    let (mut scenario, text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+    let (mut scenario, text) = match &args.scenario_toml {
+        Some(text) => scenario_of_text(text, args.seed)?,
+        None => load_scenario(args.scenario.as_ref(), args.seed)?,
+    };
     if let Some(path) = &args.inputs {
         // A trace writes no kept columns: the table's other columns are let be.
         crate::table::attach(&mut scenario, path, true)?;

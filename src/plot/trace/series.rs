@@ -243,6 +243,7 @@ mod tests {
         let settings = TraceSettings {
             sweep: None,
             scenario: Some(scenario),
+            scenario_toml: None,
             seed: None,
             inputs: None,
             sample: 0,
