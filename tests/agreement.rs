@@ -220,6 +220,14 @@ fn check_close(
     let mut struts_drift = false;
     let mut strut_loads = 0.0f64;
     for (a, b) in r.legs.iter().zip(&k.legs) {
+        // On regolith, the footprints' depths and energies within `loads_within` (of at
+        // least 0.1 mm and 1 mJ), as the peak loads: a footprint's depth is the deepest
+        // sinkage less the unloading line's spring-back, a difference that f32 rounds
+        // coarsely (measured against f64 on 4000 default regolith samples: 0.17 % at the
+        // 90th percentile, 2.4 % at the 99th).
+        struts_drift |= (a.sinkage_m - b.sinkage_m).abs() > loads_within * a.sinkage_m.max(1e-4)
+            || (a.soil_absorbed_j - b.soil_absorbed_j).abs()
+                > loads_within * a.soil_absorbed_j.max(1e-3);
         let loads = relative(a.peak_axial_force_n, b.peak_axial_force_n)
             .max(relative(a.peak_side_force_n, b.peak_side_force_n));
         strut_loads = strut_loads.max(loads);
@@ -333,6 +341,35 @@ fn kernels_agree_with_the_reference() {
             600,
         ),
         (
+            // Regolith: footpads sink into the loading curve, spring back on the unloading
+            // line, leave footprints and meet the passive earth pressure when they slide.
+            "regolith",
+            scenario("[surface]\nkind = \"regolith\""),
+            600,
+        ),
+        (
+            // Every soil parameter and the footpad area drawn, soft to stiffening soils.
+            "regolith, soil drawn",
+            scenario(
+                "[lander]\nfootpad_area_m2 = { dist = \"uniform\", min = 0.01, max = 0.08 }\n\
+                 [surface]\nkind = \"regolith\"\n[surface.regolith]\n\
+                 bekker_k_c = { dist = \"uniform\", min = 0.0, max = 3000.0 }\n\
+                 bekker_k_phi = { dist = \"uniform\", min = 1.0e5, max = 2.0e6 }\n\
+                 bekker_n = { dist = \"uniform\", min = 0.6, max = 1.3 }\n\
+                 unloading_modulus_pa_per_m = { dist = \"uniform\", min = 4.0e6, max = 4.0e7 }\n\
+                 cohesion_pa = { dist = \"uniform\", min = 0.0, max = 1000.0 }\n\
+                 friction_angle_deg = { dist = \"uniform\", min = 20.0, max = 45.0 }\n\
+                 bulk_density_kg_m3 = { dist = \"uniform\", min = 500.0, max = 2000.0 }",
+            ),
+            600,
+        ),
+        (
+            // Regolith with dampers: the crushing relieves the soil along its unloading line.
+            "regolith and dampers 50 psi",
+            scenario("[surface]\nkind = \"regolith\"\n[damper]\nenabled = true"),
+            400,
+        ),
+        (
             // Stiff contact, slopes past the friction angle: the early `sliding` and
             // `bouncing` rules fire (in about 8 % of the samples).
             "MuJoCo-matched",
@@ -374,10 +411,13 @@ fn kernels_agree_with_the_reference() {
             "kernel {isa}: {total} samples, {disagree} disagreements, {unexplained} unexplained, {drifted} drifted"
         );
         // f64 lanes round as the reference does, up to the order of sums: few samples
-        // drift (4-7 of 8600; 1 of the 600 with a control loop, by a strut load). f32
+        // drift (4-7 of 8600; 1 of the 600 with a control loop, by a strut load; with the
+        // regolith scenarios 10-16 of 10200). f32
         // lanes round 2^29 times coarser, and a lander's bounces amplify it: measured
         // 3.6-3.7 % (252-257 of 7000) drift in f32 in the three instruction sets, and with
-        // the strut loads' peaks compared (issue 30) 4.3-4.4 % (374-375 of 8600). A defect of the f32 lanes (a
+        // the strut loads' peaks compared (issue 30) 4.3-4.4 % (374-375 of 8600); with the
+        // regolith scenarios and their footprints 4.3-4.4 % (440-450 of 10200, of which
+        // 3.5-5.3 % of the regolith ones). A defect of the f32 lanes (a
         // constant rounded to 0, a threshold lost) shifts results in most samples that
         // meet it, not a few percent. A control loop in f32 amplifies more: every control
         // instant quantises on-times to minimum impulse bits, and a rounding that moves a

@@ -12,6 +12,7 @@ mod cpus;
 mod envelope;
 mod exceedance;
 mod flown;
+mod ground;
 mod hostile_files;
 mod initial_state;
 mod inputs;

@@ -22,6 +22,11 @@ pub struct LegLanes<L: Lane> {
     pub anchor_m: Vec3<L>,
     /// Mask: the friction anchor is set (the leg touched in the previous step).
     pub anchored: L::Mask,
+    /// On regolith: the deepest sinkage of the footprint, the soil's force there, and the
+    /// energy earlier footprints absorbed (the reference's `LegState`).
+    pub sinkage_max_m: L,
+    pub soil_force_max_n: L,
+    pub soil_absorbed_j: L,
     /// The friction anchor when the current rest began (see `outcome`).
     pub rest_anchor_m: Vec3<L>,
     pub peak_normal_n: L,
@@ -209,6 +214,9 @@ impl<L: Lane> Block<L> {
             absorbed_j: zero,
             anchor_m: Vec3::ZERO,
             anchored: all_false::<L>(),
+            sinkage_max_m: zero,
+            soil_force_max_n: zero,
+            soil_absorbed_j: zero,
             rest_anchor_m: Vec3::ZERO,
             peak_normal_n: zero,
             peak_axial_n: zero,
@@ -309,6 +317,9 @@ impl<L: Lane> Block<L> {
             set(&mut leg.absorbed_j, 0.0);
             leg.anchor_m.set_lane(i, [0.0; 3]);
             leg.anchored.set_lane(i, false);
+            set(&mut leg.sinkage_max_m, 0.0);
+            set(&mut leg.soil_force_max_n, 0.0);
+            set(&mut leg.soil_absorbed_j, 0.0);
             leg.rest_anchor_m.set_lane(i, [0.0; 3]);
             set(&mut leg.peak_normal_n, 0.0);
             set(&mut leg.peak_axial_n, 0.0);

@@ -5,6 +5,7 @@ use crate::block::LegLanes;
 use crate::honeycomb;
 use crate::lane::{Lane, Mask};
 use crate::params::{LegParams, Params};
+use crate::regolith;
 use crate::vec3::Vec3;
 
 /// Footpad position in B: `tip_m - s strut_axis` at stroke `s`. Without dampers the stroke
@@ -22,12 +23,13 @@ pub(crate) fn tip_in_body<L: Lane, const DAMPERS: bool>(
 }
 
 /// The force of one leg on every lane (zero where `contact` is false), with its normal
-/// magnitude and the mask of lanes where the footpad slips. Updates the friction anchor and
-/// the damper of the leg. (The reference also returns the friction magnitude, for the
-/// trace; nothing in a sweep reads it.)
+/// magnitude and the mask of lanes where the footpad slips, on the elastic plane or, with
+/// `REGOLITH`, on the soil of `p.soil`. Updates the friction anchor, the footprint and the
+/// damper of the leg. (The reference also returns the friction magnitude, for the trace;
+/// nothing in a sweep reads it.)
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn leg_force<L: Lane, const DAMPERS: bool>(
+pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
     p: &Params<L>,
     dt: L,
     contact: L::Mask,
@@ -40,14 +42,41 @@ pub fn leg_force<L: Lane, const DAMPERS: bool>(
 ) -> (Vec3<L>, L, L::Mask) {
     let zero = L::splat(0.0);
     let normal_velocity = normal.dot(tip_velocity);
-    let mut normal_n = p
-        .stiffness_n_per_m
-        .mul_sub(penetration, p.damping_n_s_per_m * normal_velocity)
-        .max(zero);
+    let touches_down = contact & !leg.anchored;
+    let mut normal_n = match (REGOLITH, &p.soil) {
+        (true, Some(s)) => {
+            // The soil's push in place of the spring (a touchdown away from the footprint
+            // first leaves it for virgin soil).
+            if touches_down.to_bitmask() != 0 {
+                regolith::footprint(
+                    s,
+                    touches_down,
+                    tip - leg.anchor_m,
+                    normal,
+                    &mut leg.sinkage_max_m,
+                    &mut leg.soil_force_max_n,
+                    &mut leg.soil_absorbed_j,
+                );
+            }
+            let spring = regolith::soil_force(
+                s,
+                contact,
+                penetration,
+                &mut leg.sinkage_max_m,
+                &mut leg.soil_force_max_n,
+            );
+            p.damping_n_s_per_m
+                .mul_neg_add(normal_velocity, spring)
+                .max(zero)
+        }
+        _ => p
+            .stiffness_n_per_m
+            .mul_sub(penetration, p.damping_n_s_per_m * normal_velocity)
+            .max(zero),
+    };
 
     // As the reference's `if !leg.anchored`: lanes touching down anchor at the footpad
     // (rare, so the block only writes the anchors when one does).
-    let touches_down = contact & !leg.anchored;
     if touches_down.to_bitmask() != 0 {
         leg.anchor_m = Vec3::select(touches_down, tip, leg.anchor_m);
     }
@@ -64,11 +93,17 @@ pub fn leg_force<L: Lane, const DAMPERS: bool>(
     );
 
     if let (true, Some(h)) = (DAMPERS, &p.honeycomb) {
-        let cap = p.friction_coefficient * normal_n;
+        let cap = friction_cap::<L, REGOLITH>(p, normal_n, penetration);
         let friction_now =
             friction * (cap / friction.length().max(cap).max(L::splat(L::MIN_POSITIVE)));
         let load_n = (normal * normal_n + friction_now).dot(strut_up);
-        let relief = p.stiffness_n_per_m + p.damping_n_s_per_m / dt;
+        // The normal force falls with the stroke along the contact's spring: the plane's,
+        // or the soil's unloading line.
+        let spring_n_per_m = match (REGOLITH, &p.soil) {
+            (true, Some(s)) => s.unloading_n_per_m,
+            _ => p.stiffness_n_per_m,
+        };
+        let relief = spring_n_per_m + p.damping_n_s_per_m / dt;
         let (ds, relieved) = honeycomb::crush(
             h,
             contact,
@@ -83,7 +118,7 @@ pub fn leg_force<L: Lane, const DAMPERS: bool>(
         normal_n = relieved;
     }
 
-    let cap = p.friction_coefficient * normal_n;
+    let cap = friction_cap::<L, REGOLITH>(p, normal_n, penetration);
     // `|friction| > cap`, compared squared (both sides are >= 0): only slipping lanes need
     // the root and the division.
     let magnitude_squared = friction.length_squared();
@@ -100,4 +135,16 @@ pub fn leg_force<L: Lane, const DAMPERS: bool>(
     let normal_n = contact.select(normal_n, zero);
     let force = Vec3::select(contact, normal.mul_add(normal_n, friction), Vec3::ZERO);
     (force, normal_n, slips)
+}
+
+/// The most the friction spring may pull with: Coulomb's `mu F_N`, and on regolith the
+/// passive earth pressure on the side of the sunk footpad besides.
+#[inline(always)]
+fn friction_cap<L: Lane, const REGOLITH: bool>(p: &Params<L>, normal_n: L, penetration: L) -> L {
+    match (REGOLITH, &p.soil) {
+        (true, Some(s)) => p
+            .friction_coefficient
+            .mul_add(normal_n, regolith::passive_force(s, penetration)),
+        _ => p.friction_coefficient * normal_n,
+    }
 }

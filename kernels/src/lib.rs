@@ -10,6 +10,7 @@ pub mod isa;
 pub mod lane;
 pub mod outcome;
 pub mod params;
+pub mod regolith;
 pub mod rigid_body;
 pub mod step;
 pub mod terrain;

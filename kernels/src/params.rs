@@ -26,6 +26,20 @@ pub struct HoneycombParams<L> {
     pub usable_stroke_m: L,
 }
 
+/// The soil under the footpads (the reference's `regolith::Soil`, per lane).
+#[derive(Debug, Clone, Copy)]
+#[allow(missing_docs)]
+pub struct SoilParams<L> {
+    /// `A (k_c / b + k_phi)`: the loading curve is `F = virgin_n z^n`.
+    pub virgin_n: L,
+    pub exponent: L,
+    /// `A k_u`, N/m.
+    pub unloading_n_per_m: L,
+    pub passive_linear_n_per_m: L,
+    pub passive_quadratic_n_per_m2: L,
+    pub pad_radius_m: L,
+}
+
 /// Everything the kernels hold fixed over a sweep.
 ///
 /// Besides the parameters themselves it holds what the step would otherwise recompute
@@ -55,6 +69,8 @@ pub struct Params<L> {
     pub friction_compliance_m_per_n: L,
     pub friction_damping_n_s_per_m: L,
     pub honeycomb: Option<HoneycombParams<L>>,
+    /// Regolith under the footpads (`None`: the elastic plane).
+    pub soil: Option<SoilParams<L>>,
     pub terrain: Option<Terrain>,
     pub step_s: L,
     pub flight_step_max_s: L,
@@ -168,6 +184,26 @@ impl<L: Lane> Params<L> {
             }
             (None, None) => {}
             _ => panic!("dampers in both or neither"),
+        }
+        match (&mut self.soil, &from.soil) {
+            (Some(to), Some(from)) => {
+                one(&mut to.virgin_n, &from.virgin_n, i);
+                one(&mut to.exponent, &from.exponent, i);
+                one(&mut to.unloading_n_per_m, &from.unloading_n_per_m, i);
+                one(
+                    &mut to.passive_linear_n_per_m,
+                    &from.passive_linear_n_per_m,
+                    i,
+                );
+                one(
+                    &mut to.passive_quadratic_n_per_m2,
+                    &from.passive_quadratic_n_per_m2,
+                    i,
+                );
+                one(&mut to.pad_radius_m, &from.pad_radius_m, i);
+            }
+            (None, None) => {}
+            _ => panic!("regolith in both or neither"),
         }
         one(&mut self.step_s, &from.step_s, i);
         one(&mut self.flight_step_max_s, &from.flight_step_max_s, i);

@@ -44,7 +44,13 @@ fn penetration<L: Lane, const TERRAIN: bool>(
 /// footpad heights of `footpad_heights`; with `THRUST`, under the thrust of `block.thrust`,
 /// counting down to its next event.
 #[inline(always)]
-pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: bool>(
+pub fn step<
+    L: Lane,
+    const DAMPERS: bool,
+    const TERRAIN: bool,
+    const THRUST: bool,
+    const REGOLITH: bool,
+>(
     p: &Params<L>,
     block: &mut Block<L>,
     dt: L,
@@ -88,7 +94,7 @@ pub fn step<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: boo
             } else {
                 -rotation.mul_vec3(leg.strut_axis)
             };
-            let (f, normal_n, slipping) = contact::leg_force::<L, DAMPERS>(
+            let (f, normal_n, slipping) = contact::leg_force::<L, DAMPERS, REGOLITH>(
                 p,
                 dt,
                 contact,
@@ -259,29 +265,59 @@ pub struct Advanced {
 /// nothing but the block's state crosses from one step to the next (one call per step,
 /// with the parts as functions of their own, measured 15-19 % slower).
 ///
-/// The loop is compiled once for each combination of dampers, rough terrain and thrust,
-/// and the parameters pick one: the step then tests for none of them (a test per leg and
-/// step, and code that the compiler would otherwise hoist out of the tests: a division per
-/// step for dampers that are not there), and a lander without thrusters pays nothing for
-/// them.
+/// The loop is compiled once for each combination of dampers, rough terrain, thrust and
+/// regolith, and the parameters pick one: the step then tests for none of them (a test per
+/// leg and step, and code that the compiler would otherwise hoist out of the tests: a
+/// division per step for dampers that are not there), and a lander without thrusters or
+/// regolith pays nothing for them.
 #[inline(always)]
 pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>, steps: u32) -> Advanced {
-    match (p.honeycomb.is_some(), p.terrain.is_some(), p.thrust) {
-        (false, false, false) => advance_with::<L, false, false, false>(p, block, steps),
-        (true, false, false) => advance_with::<L, true, false, false>(p, block, steps),
-        (false, true, false) => advance_with::<L, false, true, false>(p, block, steps),
-        (true, true, false) => advance_with::<L, true, true, false>(p, block, steps),
-        (false, false, true) => advance_with::<L, false, false, true>(p, block, steps),
-        (true, false, true) => advance_with::<L, true, false, true>(p, block, steps),
-        (false, true, true) => advance_with::<L, false, true, true>(p, block, steps),
-        (true, true, true) => advance_with::<L, true, true, true>(p, block, steps),
+    match (
+        p.honeycomb.is_some(),
+        p.terrain.is_some(),
+        p.thrust,
+        p.soil.is_some(),
+    ) {
+        (false, false, false, false) => {
+            advance_with::<L, false, false, false, false>(p, block, steps)
+        }
+        (true, false, false, false) => {
+            advance_with::<L, true, false, false, false>(p, block, steps)
+        }
+        (false, true, false, false) => {
+            advance_with::<L, false, true, false, false>(p, block, steps)
+        }
+        (true, true, false, false) => advance_with::<L, true, true, false, false>(p, block, steps),
+        (false, false, true, false) => {
+            advance_with::<L, false, false, true, false>(p, block, steps)
+        }
+        (true, false, true, false) => advance_with::<L, true, false, true, false>(p, block, steps),
+        (false, true, true, false) => advance_with::<L, false, true, true, false>(p, block, steps),
+        (true, true, true, false) => advance_with::<L, true, true, true, false>(p, block, steps),
+        (false, false, false, true) => {
+            advance_with::<L, false, false, false, true>(p, block, steps)
+        }
+        (true, false, false, true) => advance_with::<L, true, false, false, true>(p, block, steps),
+        (false, true, false, true) => advance_with::<L, false, true, false, true>(p, block, steps),
+        (true, true, false, true) => advance_with::<L, true, true, false, true>(p, block, steps),
+        (false, false, true, true) => advance_with::<L, false, false, true, true>(p, block, steps),
+        (true, false, true, true) => advance_with::<L, true, false, true, true>(p, block, steps),
+        (false, true, true, true) => advance_with::<L, false, true, true, true>(p, block, steps),
+        (true, true, true, true) => advance_with::<L, true, true, true, true>(p, block, steps),
     }
 }
 
 /// `advance` with (`DAMPERS`) or without dampers, on rough terrain (`TERRAIN`) or a plane,
-/// with (`THRUST`) or without a control loop.
+/// with (`THRUST`) or without a control loop, on regolith (`REGOLITH`) or the elastic
+/// surface.
 #[inline(always)]
-fn advance_with<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: bool>(
+fn advance_with<
+    L: Lane,
+    const DAMPERS: bool,
+    const TERRAIN: bool,
+    const THRUST: bool,
+    const REGOLITH: bool,
+>(
     p: &Params<L>,
     block: &mut Block<L>,
     steps: u32,
@@ -289,7 +325,7 @@ fn advance_with<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST:
     for taken in 1..=steps {
         let lowest = footpad_heights::<L, DAMPERS>(p, block);
         let dt = step_size::<L, THRUST>(p, block, lowest);
-        step::<L, DAMPERS, TERRAIN, THRUST>(p, block, dt);
+        step::<L, DAMPERS, TERRAIN, THRUST, REGOLITH>(p, block, dt);
         let decided = crate::outcome::observe::<L, DAMPERS, THRUST>(p, block);
         let bits = outcome_bits(block, decided);
         let events = if THRUST {

@@ -1,5 +1,6 @@
-//! Leg-surface contact (MODEL.md section 5): a spring-damper normal force that never pulls,
-//! stick-slip Coulomb friction, and the honeycomb damper in series.
+//! Leg-surface contact (MODEL.md section 5): a spring-damper normal force that never pulls
+//! (on regolith, the soil's push in place of the spring: `regolith`), stick-slip Coulomb
+//! friction, and the honeycomb damper in series.
 //!
 //! Friction is a tangential spring-damper anchored where the footpad touched down. Its
 //! force is capped at `mu F_N`; while capped the anchor follows the footpad (slip), so a
@@ -8,6 +9,7 @@
 
 use super::honeycomb;
 use super::model::{Contact, Honeycomb};
+use super::regolith::{self, Soil};
 use glam::DVec3;
 
 /// What a leg remembers between steps.
@@ -22,6 +24,12 @@ pub struct LegState {
     /// Whether the footpad is in contact with an anchor set: set at touchdown, cleared at
     /// lift-off.
     pub anchored: bool,
+    /// On regolith: the deepest sinkage of the footprint the footpad is in, m.
+    pub sinkage_max_m: f64,
+    /// On regolith: the soil's force at that sinkage (on the loading curve), N.
+    pub soil_force_max_n: f64,
+    /// On regolith: the energy the footpad's earlier footprints absorbed, J.
+    pub soil_absorbed_j: f64,
 }
 
 impl Default for LegState {
@@ -31,6 +39,9 @@ impl Default for LegState {
             absorbed_j: 0.0,
             anchor_m: DVec3::ZERO,
             anchored: false,
+            sinkage_max_m: 0.0,
+            soil_force_max_n: 0.0,
+            soil_absorbed_j: 0.0,
         }
     }
 }
@@ -49,12 +60,14 @@ pub struct LegForce {
 }
 
 /// Force of a leg whose footpad at `tip` (in I) with velocity `tip_velocity` penetrates the
-/// surface by `penetration > 0` along the local normal `normal`. `strut_up` is the strut
-/// direction from footpad to hip in I. Updates the friction anchor and the damper.
+/// surface by `penetration > 0` along the local normal `normal`, on the elastic plane or,
+/// with `soil`, on regolith. `strut_up` is the strut direction from footpad to hip in I.
+/// Updates the friction anchor, the footprint and the damper.
 #[inline]
 #[allow(clippy::too_many_arguments)]
 pub fn leg_force(
     contact: &Contact,
+    soil: Option<&Soil>,
     honeycomb: Option<&Honeycomb>,
     dt: f64,
     penetration: f64,
@@ -65,9 +78,30 @@ pub fn leg_force(
     leg: &mut LegState,
 ) -> LegForce {
     let normal_velocity = normal.dot(tip_velocity);
-    let mut normal_n = (contact.stiffness_n_per_m * penetration
-        - contact.damping_n_s_per_m * normal_velocity)
-        .max(0.0);
+    // The spring: the elastic plane's `k d`, or the soil's push (a touchdown away from the
+    // footprint first leaves it for virgin soil).
+    let spring = match soil {
+        None => contact.stiffness_n_per_m * penetration,
+        Some(s) => {
+            if !leg.anchored {
+                regolith::footprint(
+                    s,
+                    tip - leg.anchor_m,
+                    normal,
+                    &mut leg.sinkage_max_m,
+                    &mut leg.soil_force_max_n,
+                    &mut leg.soil_absorbed_j,
+                );
+            }
+            regolith::soil_force(
+                s,
+                penetration,
+                &mut leg.sinkage_max_m,
+                &mut leg.soil_force_max_n,
+            )
+        }
+    };
+    let mut normal_n = (spring - contact.damping_n_s_per_m * normal_velocity).max(0.0);
 
     if !leg.anchored {
         leg.anchor_m = tip;
@@ -80,10 +114,13 @@ pub fn leg_force(
         - velocity_t * contact.friction_damping_n_s_per_m;
 
     if let Some(h) = honeycomb {
-        let cap = contact.friction_coefficient * normal_n;
+        let cap = friction_cap(contact, soil, normal_n, penetration);
         let friction_now = friction * (cap / friction.length().max(cap).max(f64::MIN_POSITIVE));
         let load_n = (normal * normal_n + friction_now).dot(strut_up);
-        let relief = contact.stiffness_n_per_m + contact.damping_n_s_per_m / dt;
+        // The normal force falls with the stroke along the contact's spring: the plane's,
+        // or the soil's unloading line.
+        let spring_n_per_m = soil.map_or(contact.stiffness_n_per_m, |s| s.unloading_n_per_m);
+        let relief = spring_n_per_m + contact.damping_n_s_per_m / dt;
         let (ds, relieved) = honeycomb::crush(
             h,
             leg.stroke_m,
@@ -97,7 +134,7 @@ pub fn leg_force(
         normal_n = relieved;
     }
 
-    let cap = contact.friction_coefficient * normal_n;
+    let cap = friction_cap(contact, soil, normal_n, penetration);
     let magnitude = friction.length();
     let slipping = magnitude > cap;
     if slipping {
@@ -110,5 +147,17 @@ pub fn leg_force(
         normal_n,
         friction_n: friction.length(),
         slipping,
+    }
+}
+
+/// The most the friction spring may pull with: Coulomb's `mu F_N`, and on regolith the
+/// passive earth pressure on the side of the sunk footpad besides.
+#[inline]
+fn friction_cap(contact: &Contact, soil: Option<&Soil>, normal_n: f64, penetration: f64) -> f64 {
+    match soil {
+        None => contact.friction_coefficient * normal_n,
+        Some(s) => {
+            contact.friction_coefficient * normal_n + regolith::passive_force(s, penetration)
+        }
     }
 }

@@ -1,7 +1,8 @@
 //! The scalar reference model: one lander, f64, glam, written like the equations of
 //! MODEL.md. It drives `touchdown trace` and is the oracle the SIMD kernels must agree with.
 //!
-//! Files mirror the kernels: `rigid_body`, `contact`, `honeycomb`, `step`, `outcome`;
+//! Files mirror the kernels: `rigid_body`, `contact`, `regolith`, `honeycomb`, `step`,
+//! `outcome`;
 //! `model` holds the parameters, `run` one whole sample, `touchdown` the state in which
 //! a sample met the surface, and `strut` what it did to the struts.
 
@@ -9,6 +10,7 @@ pub mod contact;
 pub mod honeycomb;
 pub mod model;
 pub mod outcome;
+pub mod regolith;
 pub mod rigid_body;
 pub mod run;
 pub mod step;

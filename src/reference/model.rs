@@ -1,6 +1,7 @@
 //! What stays fixed over a sweep (`Model`, derived once from the scenario) and what a
 //! sample fixes (`Surface`, the slope plane and terrain tile it lands on).
 
+use super::regolith::Soil;
 use crate::scenario::Sample;
 use crate::scenario::{PARAMETERS, PSI_PA, Parameter, Sampled, Scenario, StrutAxes};
 use glam::DVec3;
@@ -100,6 +101,12 @@ pub struct Model {
     pub contact: Contact,
     /// The damper in every leg's strut (`None`: rigid legs).
     pub honeycomb: Option<Honeycomb>,
+    /// Area of each footpad's sole, m^2.
+    pub footpad_area_m2: f64,
+    /// The scenario's regolith (`None`: the elastic plane), whose values a sample may draw.
+    pub regolith: Option<crate::scenario::Regolith>,
+    /// The soil under the footpads, derived from `regolith` (`None`: the elastic plane).
+    pub soil: Option<Soil>,
     /// The rough-terrain tiles (`None`: the bare slope plane).
     pub terrain: Option<Terrain>,
     /// Step whenever a footpad may touch the surface within it.
@@ -205,6 +212,12 @@ impl Model {
                 friction_damping_n_s_per_m: s.surface.friction_damping_n_s_per_m,
             },
             honeycomb,
+            footpad_area_m2: s.lander.footpad_area_m2,
+            regolith: s.surface.regolith,
+            soil: s
+                .surface
+                .regolith
+                .map(|r| Soil::of(&r, s.lander.footpad_area_m2, s.gravity_m_s2)),
             // A drawn roughness: the tiles of the largest, scaled to the median here and to
             // each sample's own value by `for_sample`.
             terrain: {
@@ -306,13 +319,28 @@ impl Model {
                         *t = t.scaled(x / largest);
                     }
                 }
+                Parameter::FootpadAreaM2 => m.footpad_area_m2 = x,
+                Parameter::RockAbundance => {}
+                Parameter::BekkerKC => set_soil(&mut m, |r| r.bekker_k_c = x),
+                Parameter::BekkerKPhi => set_soil(&mut m, |r| r.bekker_k_phi = x),
+                Parameter::BekkerN => set_soil(&mut m, |r| r.bekker_n = x),
+                Parameter::UnloadingModulusPaPerM => {
+                    set_soil(&mut m, |r| r.unloading_modulus_pa_per_m = x);
+                }
+                Parameter::CohesionPa => set_soil(&mut m, |r| r.cohesion_pa = x),
+                Parameter::FrictionAngleDeg => set_soil(&mut m, |r| r.friction_angle_deg = x),
+                Parameter::BulkDensityKgM3 => set_soil(&mut m, |r| r.bulk_density_kg_m3 = x),
             }
         }
+        m.soil = m
+            .regolith
+            .map(|r| Soil::of(&r, m.footpad_area_m2, m.gravity_m_s2));
         m
     }
 
     /// Whether a steady slide may be decided `sliding` early (MODEL.md section 8): on a
-    /// plane (a rough terrain changes under a sliding lander), and with dampers, if any,
+    /// plane of the elastic kind (a rough terrain changes under a sliding lander; a sunk
+    /// footpad ploughs), and with dampers, if any,
     /// that no leg of a steady slide can crush. A leg then bears at most the settled normal
     /// force, `(1 + SLIDE_FORCE_BAND) m g`, with its friction: below `(1 + mu)` times that.
     #[must_use]
@@ -323,7 +351,10 @@ impl Model {
         let crush_least = self.honeycomb.as_ref().map_or(f64::INFINITY, |h| {
             h.stages.iter().map(|s| s.1).fold(h.peak_force_n, f64::min)
         });
-        self.thresholds.early_sliding && self.terrain.is_none() && crush_least > slide_load
+        self.thresholds.early_sliding
+            && self.terrain.is_none()
+            && self.soil.is_none()
+            && crush_least > slide_load
     }
 
     /// Height of the highest point of the terrain above the plane (0 for the plane), m.
@@ -339,5 +370,12 @@ impl Model {
             .iter()
             .map(|l| l.tip_m.length())
             .fold(0.0, f64::max)
+    }
+}
+
+/// Sets a value of the model's regolith (there is one where a sample draws its values).
+fn set_soil(m: &mut Model, set: impl FnOnce(&mut crate::scenario::Regolith)) {
+    if let Some(r) = &mut m.regolith {
+        set(r);
     }
 }

@@ -33,6 +33,7 @@
 //!   momentum allows, `|L| / I_min`, with the margin `TURN_MARGIN`.
 
 use super::model::Model;
+use super::regolith::Soil;
 use super::step::{State, StepReport};
 use super::strut::{StrutPeaks, stroke_margin};
 use super::touchdown::{Met, Touchdown};
@@ -126,6 +127,10 @@ pub struct LegSummary {
     pub stroke_margin_m: Option<f64>,
     /// Whether the damper used up its stroke (`strut::BOTTOMED_WITHIN`).
     pub bottomed: bool,
+    /// On regolith: the depth of the footpad's last footprint, m (0 on the elastic plane).
+    pub sinkage_m: f64,
+    /// On regolith: the energy the soil absorbed under the footpad, J (0 on the plane).
+    pub soil_absorbed_j: f64,
 }
 
 /// The results of one sample (MODEL.md section 9).
@@ -392,7 +397,13 @@ impl Tracker {
 
     /// The summary of a sample decided as `outcome` in state `last`.
     #[must_use]
-    pub fn finish(&self, surface: &Surface, outcome: Outcome, last: &State) -> Summary {
+    pub fn finish(
+        &self,
+        soil: Option<&Soil>,
+        surface: &Surface,
+        outcome: Outcome,
+        last: &State,
+    ) -> Summary {
         let cos_tilt = (last.body.attitude * DVec3::Z).dot(surface.normal);
         // The largest tilt over the states of every step and the final one, so that it is
         // never below the final tilt.
@@ -420,16 +431,29 @@ impl Tracker {
                 .iter()
                 .zip(&last.legs)
                 .zip(&self.struts)
-                .map(|((p, l), strut)| LegSummary {
-                    peak_normal_force_n: finite_or_zero(*p),
-                    stroke_m: finite_or_zero(l.stroke_m),
-                    absorbed_j: finite_or_zero(l.absorbed_j),
-                    peak_axial_force_n: finite_or_zero(strut.axial_n),
-                    peak_axial_force_s: (!strut.axial_s.is_nan()).then_some(strut.axial_s),
-                    peak_side_force_n: finite_or_zero(strut.side_n),
-                    peak_side_force_s: (!strut.side_s.is_nan()).then_some(strut.side_s),
-                    stroke_margin_m: None,
-                    bottomed: false,
+                .map(|((p, l), strut)| {
+                    let (sinkage_m, soil_absorbed_j) = soil.map_or((0.0, 0.0), |s| {
+                        kernels::regolith::leg_results(
+                            s.exponent,
+                            s.unloading_n_per_m,
+                            l.sinkage_max_m,
+                            l.soil_force_max_n,
+                            l.soil_absorbed_j,
+                        )
+                    });
+                    LegSummary {
+                        peak_normal_force_n: finite_or_zero(*p),
+                        stroke_m: finite_or_zero(l.stroke_m),
+                        absorbed_j: finite_or_zero(l.absorbed_j),
+                        peak_axial_force_n: finite_or_zero(strut.axial_n),
+                        peak_axial_force_s: (!strut.axial_s.is_nan()).then_some(strut.axial_s),
+                        peak_side_force_n: finite_or_zero(strut.side_n),
+                        peak_side_force_s: (!strut.side_s.is_nan()).then_some(strut.side_s),
+                        stroke_margin_m: None,
+                        bottomed: false,
+                        sinkage_m: finite_or_zero(sinkage_m),
+                        soil_absorbed_j: finite_or_zero(soil_absorbed_j),
+                    }
                 })
                 .collect(),
             control: None,

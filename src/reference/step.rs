@@ -133,6 +133,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
         let f = if penetration > 0.0 {
             contact::leg_force(
                 &model.contact,
+                model.soil.as_ref(),
                 model.honeycomb.as_ref(),
                 dt,
                 penetration,

@@ -109,6 +109,27 @@ impl Scenario {
             Parameter::FrictionCoefficient => self.surface.friction_coefficient,
             Parameter::CrushStrengthPsi => self.damper.stages[0].crush_strength_psi,
             Parameter::RmsHeightM => self.surface.roughness.rms_height_m,
+            Parameter::FootpadAreaM2 => self.lander.footpad_area_m2,
+            Parameter::RockAbundance => f64::NAN,
+            p => self.surface.regolith.map_or(f64::NAN, |r| r.parameter(p)),
+        }
+    }
+
+    /// Whether parameter `p` plays a part in this scenario: the lander's and the contact
+    /// law's always, the footpad's area and the soil's on regolith, the rock abundance
+    /// with rocks. (A trace records those that do.)
+    #[must_use]
+    pub fn uses(&self, p: Parameter) -> bool {
+        match p {
+            Parameter::MassKg
+            | Parameter::CgHeightM
+            | Parameter::StiffnessNPerM
+            | Parameter::DampingNSPerM
+            | Parameter::FrictionCoefficient
+            | Parameter::CrushStrengthPsi
+            | Parameter::RmsHeightM => true,
+            Parameter::RockAbundance => false,
+            _ => self.surface.regolith.is_some(),
         }
     }
 

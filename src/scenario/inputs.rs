@@ -132,6 +132,27 @@ parameters! {
     /// `surface.roughness.rms_height_m`: the terrain tiles, built for the largest value,
     /// scaled to each sample's.
     RmsHeightM = "surface.roughness".rms_height_m ["m"] positive: false,
+    /// `lander.footpad_area_m2`: the area of each footpad's sole (regolith and rocks).
+    FootpadAreaM2 = "lander".footpad_area_m2 ["m^2"] positive: true,
+    /// `surface.regolith.bekker_k_c`: Bekker's cohesive modulus, N/m^(n+1).
+    BekkerKC = "surface.regolith".bekker_k_c ["N/m^(n+1)"] positive: false,
+    /// `surface.regolith.bekker_k_phi`: Bekker's frictional modulus, N/m^(n+2).
+    BekkerKPhi = "surface.regolith".bekker_k_phi ["N/m^(n+2)"] positive: false,
+    /// `surface.regolith.bekker_n`: Bekker's sinkage exponent.
+    BekkerN = "surface.regolith".bekker_n ["1"] positive: true,
+    /// `surface.regolith.unloading_modulus_pa_per_m`: the slope of the elastic unloading
+    /// line, pressure per depth.
+    UnloadingModulusPaPerM = "surface.regolith".unloading_modulus_pa_per_m ["Pa/m"]
+        positive: true,
+    /// `surface.regolith.cohesion_pa`: the soil's cohesion (passive earth pressure).
+    CohesionPa = "surface.regolith".cohesion_pa ["Pa"] positive: false,
+    /// `surface.regolith.friction_angle_deg`: the soil's internal friction angle.
+    FrictionAngleDeg = "surface.regolith".friction_angle_deg ["deg"] positive: false,
+    /// `surface.regolith.bulk_density_kg_m3`: the soil's bulk density.
+    BulkDensityKgM3 = "surface.regolith".bulk_density_kg_m3 ["kg/m^3"] positive: false,
+    /// `surface.rocks.abundance`: Golombek and Rapp's `k`, the fraction of the surface
+    /// covered by rocks.
+    RockAbundance = "surface.rocks".abundance ["1"] positive: false,
 }
 
 /// The built-in control laws' parameters a sample may draw (`Control::parameters`).
@@ -250,11 +271,6 @@ pub const FIRST_STATE_VALUE: usize = FIRST_LAW_VALUE + LAW_PARAMETERS;
 /// scenario without that law), then the touchdown state (`INITIAL_FIELDS`; 0 in a sample
 /// of a scenario that gives none).
 pub const VALUES: usize = FIRST_STATE_VALUE + STATE_VALUES;
-
-// The quasi-random design gives every value drawn from a distribution a dimension of the
-// Sobol sequence. A scenario that gives the touchdown state fixes the release height and
-// the three velocity errors (`FALL_INPUTS`, `Scenario::check_touchdown_state`): four fewer.
-const _: () = assert!(VALUES - (FALL_INPUTS.end - FALL_INPUTS.start) <= crate::qmc::MAX_DIMENSIONS);
 
 /// The column name of value `k` of a sample (`Sample::values`).
 #[must_use]

@@ -35,6 +35,10 @@ table! {
         inertia_kg_m2: [f64; 3] = read_inertia(r, key)?,
         /// Where the legs are: `legs` and its fellows, or `leg_tips_m`.
         geometry: Geometry = read_geometry(r, sampled)?,
+        /// Area of each footpad's sole, m^2: its bearing area on regolith, and the size of
+        /// the sphere that meets rocks (MODEL.md section 5.1). default.toml does not show
+        /// it (its text is stored in every sweep).
+        footpad_area_m2: f64 = read_parameter(r.or(key, 0.03), key, sampled)?,
     }
 }
 

@@ -98,6 +98,7 @@ impl Scenario {
             limits.check(s.damper.enabled)?;
         }
         s.check_touchdown_state()?;
+        s.check_regolith()?;
         Ok(s)
     }
 
@@ -121,6 +122,19 @@ impl Scenario {
                 &format!(
                     "inputs, parameters and control law parameters drawn at random: {key} \
                      is a grid (give it a uniform distribution over the same range)"
+                ),
+            ));
+        }
+        // The quasi-random design gives every value drawn from a distribution a dimension
+        // of the Sobol sequence, of which `qmc` has direction numbers for so many.
+        let drawn = design_inputs(self).len();
+        if self.design == Design::SobolSequence && drawn > crate::qmc::MAX_DIMENSIONS {
+            return Err(invalid(
+                word,
+                &format!(
+                    "at most {} values drawn from a distribution ({drawn} are): fix some, \
+                     or use design = \"independent\"",
+                    crate::qmc::MAX_DIMENSIONS
                 ),
             ));
         }
@@ -169,6 +183,36 @@ impl Scenario {
 }
 
 impl Scenario {
+    /// Refuses a soil that cannot bear or has no passive pressure: Bekker's two moduli
+    /// both 0 (nothing holds a footpad up), or a friction angle of 90 deg or more (Rankine's
+    /// `K_p` is infinite), in any sample.
+    fn check_regolith(&self) -> Result<(), ScenarioError> {
+        if self.surface.regolith.is_none() {
+            return Ok(());
+        }
+        let range = |p: Parameter| {
+            self.sampled[p as usize].map_or((self.parameter(p), self.parameter(p)), |d| d.support())
+        };
+        let invalid = |key: &str, value: f64, allowed: &str| ScenarioError::Invalid {
+            key: format!("surface.regolith.{key}"),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        };
+        let phi = range(Parameter::FrictionAngleDeg).1;
+        if phi >= 90.0 {
+            return Err(invalid("friction_angle_deg", phi, "an angle below 90 deg"));
+        }
+        let (k_c, k_phi) = (range(Parameter::BekkerKC).0, range(Parameter::BekkerKPhi).0);
+        if k_c <= 0.0 && k_phi <= 0.0 {
+            return Err(invalid(
+                "bekker_k_phi",
+                k_phi,
+                "a soil that bears: bekker_k_c or bekker_k_phi greater than 0 in every sample",
+            ));
+        }
+        Ok(())
+    }
+
     /// Refuses a touchdown state given (`Start::State`) beside a fall or velocity errors:
     /// the state replaces them, so `release_height_m` and `velocity_error_*` must be 0.
     fn check_touchdown_state(&self) -> Result<(), ScenarioError> {

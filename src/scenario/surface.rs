@@ -3,6 +3,24 @@
 use super::error::ScenarioError;
 use super::inputs::{Sampled, read_parameter};
 use super::reader::table;
+use super::regolith::{Regolith, read_regolith};
+
+/// What the ground under the footpads is (MODEL.md section 5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceKind {
+    /// The elastic plane: a spring-damper at every footpad (the default).
+    Elastic,
+    /// Regolith that gives way: `[surface.regolith]` (MODEL.md section 5.1).
+    Regolith,
+}
+
+impl SurfaceKind {
+    /// The word of each kind in a scenario file.
+    pub const WORDS: [(&'static str, SurfaceKind); 2] = [
+        ("elastic", SurfaceKind::Elastic),
+        ("regolith", SurfaceKind::Regolith),
+    ];
+}
 
 table! {
     /// Gaussian-smoothed random terrain (MODEL.md section 4).
@@ -44,6 +62,8 @@ table! {
     #[derive(Debug, Clone, PartialEq)]
     pub struct Surface;
     fn read_surface(r, sampled: &mut Sampled) with key {
+        /// What the ground is: `"elastic"` or `"regolith"`.
+        kind: SurfaceKind = r.or(key, "elastic").word(key, &SurfaceKind::WORDS)?,
         /// Normal contact stiffness per leg.
         stiffness_n_per_m: f64 = read_parameter(r, key, sampled)?,
         /// Normal contact damping per leg.
@@ -56,5 +76,20 @@ table! {
         friction_damping_n_s_per_m: f64 = r.non_negative(key)?,
         /// The terrain, `[surface.roughness]`.
         roughness: Roughness = r.section(key, |t| read_roughness(t, sampled))?,
+        /// The soil, `[surface.regolith]`, with `kind = "regolith"` (its defaults where the
+        /// file leaves the table out); `None` on the elastic plane.
+        regolith: Option<Regolith> = match kind {
+            SurfaceKind::Regolith => Some(r.section(key, |t| read_regolith(t, sampled))?),
+            SurfaceKind::Elastic => match r.take(key) {
+                None => None,
+                Some(v) => {
+                    return Err(r.error(
+                        key,
+                        &v,
+                        "no [surface.regolith] table unless surface.kind = \"regolith\"",
+                    ));
+                }
+            },
+        },
     }
 }

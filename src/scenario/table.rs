@@ -56,7 +56,7 @@ pub const METADATA_KEYS: [&str; 5] = [
 ];
 
 /// What one row of a table gives a sample, where the table has the column.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TableRow {
     /// Value `k` of the sample (`Sample::values`).
     pub values: [Option<f64>; VALUES],
@@ -66,6 +66,17 @@ pub struct TableRow {
     pub terrain_tile: Option<u32>,
     /// Its terrain offset, downhill and cross-slope, m.
     pub terrain_offset_m: [Option<f64>; 2],
+}
+
+impl Default for TableRow {
+    fn default() -> Self {
+        TableRow {
+            values: [None; VALUES],
+            sample_seed: None,
+            terrain_tile: None,
+            terrain_offset_m: [None; 2],
+        }
+    }
 }
 
 /// Where the rows of a table come from. Rows are asked for from many threads, roughly in

@@ -12,7 +12,7 @@ use glam::{DQuat, DVec3};
 use kernels::block::{Block, LaneInit, LaneThrust};
 use kernels::lane::Lane;
 use kernels::lane::lane;
-use kernels::params::{HoneycombParams, LegParams, Params};
+use kernels::params::{HoneycombParams, LegParams, Params, SoilParams};
 use kernels::terrain::Terrain;
 use kernels::vec3::Vec3;
 
@@ -46,6 +46,14 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
             peak_force_n: lane(h.peak_force_n),
             peak_stroke_m: lane(h.peak_stroke_m),
             usable_stroke_m: lane(h.usable_stroke_m()),
+        }),
+        soil: m.soil.as_ref().map(|s| SoilParams {
+            virgin_n: lane(s.virgin_n),
+            exponent: lane(s.exponent),
+            unloading_n_per_m: lane(s.unloading_n_per_m),
+            passive_linear_n_per_m: lane(s.passive_linear_n_per_m),
+            passive_quadratic_n_per_m2: lane(s.passive_quadratic_n_per_m2),
+            pad_radius_m: lane(s.pad_radius_m),
         }),
         terrain: m.terrain.clone(),
         step_s: lane(m.step_s),
@@ -104,8 +112,14 @@ pub(super) fn sample_lane_init(model: &Model, sample: &Sample) -> LaneInit {
 }
 
 /// The summary of the sample of `model` decided in lane `i` (the reference's
-/// `Tracker::finish`, then `Summary::judge`).
-pub(super) fn lane_summary<L: Lane>(model: &Model, block: &Block<L>, i: usize) -> Summary {
+/// `Tracker::finish`, then `Summary::judge`), on the soil of `soil` (the lane's
+/// parameters' soil: each lane's own values where the samples draw them).
+pub(super) fn lane_summary<L: Lane>(
+    model: &Model,
+    soil: Option<&SoilParams<L>>,
+    block: &Block<L>,
+    i: usize,
+) -> Summary {
     let at = |l: &L| l.lane(i);
     let t = &block.track;
     let normal = DVec3::from_array(block.surface.normal.lane(i));
@@ -145,16 +159,29 @@ pub(super) fn lane_summary<L: Lane>(model: &Model, block: &Block<L>, i: usize) -
         legs: block
             .legs
             .iter()
-            .map(|l| LegSummary {
-                peak_normal_force_n: finite_or_zero(at(&l.peak_normal_n)),
-                stroke_m: finite_or_zero(at(&l.stroke_m)),
-                absorbed_j: finite_or_zero(at(&l.absorbed_j)),
-                peak_axial_force_n: finite_or_zero(at(&l.peak_axial_n)),
-                peak_axial_force_s: time(at(&l.peak_axial_s)),
-                peak_side_force_n: finite_or_zero(at(&l.peak_side_squared).sqrt()),
-                peak_side_force_s: time(at(&l.peak_side_s)),
-                stroke_margin_m: None,
-                bottomed: false,
+            .map(|l| {
+                let (sinkage_m, soil_absorbed_j) = soil.map_or((0.0, 0.0), |s| {
+                    kernels::regolith::leg_results(
+                        at(&s.exponent),
+                        at(&s.unloading_n_per_m),
+                        at(&l.sinkage_max_m),
+                        at(&l.soil_force_max_n),
+                        at(&l.soil_absorbed_j),
+                    )
+                });
+                LegSummary {
+                    peak_normal_force_n: finite_or_zero(at(&l.peak_normal_n)),
+                    stroke_m: finite_or_zero(at(&l.stroke_m)),
+                    absorbed_j: finite_or_zero(at(&l.absorbed_j)),
+                    peak_axial_force_n: finite_or_zero(at(&l.peak_axial_n)),
+                    peak_axial_force_s: time(at(&l.peak_axial_s)),
+                    peak_side_force_n: finite_or_zero(at(&l.peak_side_squared).sqrt()),
+                    peak_side_force_s: time(at(&l.peak_side_s)),
+                    stroke_margin_m: None,
+                    bottomed: false,
+                    sinkage_m: finite_or_zero(sinkage_m),
+                    soil_absorbed_j: finite_or_zero(soil_absorbed_j),
+                }
             })
             .collect(),
         control: None,
@@ -255,7 +282,7 @@ mod tests {
             poison(&mut block, lane);
             let decided = K::advance(&params, &mut block, 1).bits;
             assert_eq!(decided, 1 << lane, "{what}: only the poisoned lane ends");
-            let s = lane_summary(&model, &block, lane);
+            let s = lane_summary(&model, params.soil.as_ref(), &block, lane);
             assert_eq!(s.outcome, Outcome::Diverged, "{what}");
             let mut numbers = vec![
                 s.decided_s,

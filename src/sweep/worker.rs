@@ -194,8 +194,8 @@ impl<K: Kernel> Worker<K> {
             }
             // The lanes change only between calls (a decision stops the kernel), so `busy`
             // holds for every step of one.
-            let params = self.own.as_ref().unwrap_or(params);
-            let advanced = K::advance(params, &mut self.block, STEPS_PER_CALL);
+            let lane_params = self.own.as_ref().unwrap_or(params);
+            let advanced = K::advance(lane_params, &mut self.block, STEPS_PER_CALL);
             stats.busy_lane_steps += busy * u64::from(advanced.steps);
             stats.lane_steps += K::LANES as u64 * u64::from(advanced.steps);
             let (decided, far) = (advanced.bits & 0xffff, advanced.bits >> 16);
@@ -211,7 +211,8 @@ impl<K: Kernel> Worker<K> {
                         if sample.index < feed.window_end {
                             feed.outstanding.fetch_sub(1, Ordering::Relaxed);
                         }
-                        let mut summary = lane_summary(model, &self.block, i);
+                        let soil = self.own.as_ref().unwrap_or(params).soil.as_ref();
+                        let mut summary = lane_summary(model, soil, &self.block, i);
                         if let (Some(m), Some(c)) = (&model.control, &mut self.control[i]) {
                             let left = self.block.thrust.event_in_s.lane(i);
                             summary.control = Some(Box::new(c.finish(m, left)));

@@ -143,7 +143,7 @@ pub(super) fn is_result_column(name: &str) -> bool {
         "legs_bottomed",
         "limits_broken",
     ];
-    const LEG_RESULTS: [&str; 9] = [
+    const LEG_RESULTS: [&str; 11] = [
         "_peak_normal_force_n",
         "_stroke_m",
         "_absorbed_j",
@@ -153,6 +153,8 @@ pub(super) fn is_result_column(name: &str) -> bool {
         "_peak_side_force_s",
         "_stroke_margin_m",
         "_bottomed",
+        "_sinkage_m",
+        "_soil_absorbed_j",
     ];
     let leg = name.strip_prefix("leg").is_some_and(|rest| {
         let digits = rest.chars().take_while(char::is_ascii_digit).count();
@@ -176,6 +178,8 @@ mod tests {
             "leg3_stroke_m",
             "leg12_absorbed_j",
             "leg1_bottomed",
+            "leg0_sinkage_m",
+            "leg2_soil_absorbed_j",
             "limits_broken",
             "propellant_kg",
         ] {

@@ -16,6 +16,7 @@ use touchdown::slope::Surface;
 mod free_flight;
 mod honeycomb;
 mod outcome;
+mod regolith;
 mod restitution;
 mod sliding;
 mod tipping;

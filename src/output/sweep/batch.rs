@@ -211,6 +211,9 @@ pub fn batch(
                 }
                 Arc::new(b.finish())
             }
+            other if let Some((k, value)) = regolith_value(other) => {
+                f64s(&|r| value(&r.summary.legs[k]))
+            }
             other if let Some(value) = control_value(other) => f64s(&|r| value(&control(r))),
             other if let Some((_, value)) = RELEASE_STATE.iter().find(|c| c.0 == other) => {
                 f64s(&|r| release_state(r).as_ref().map_or(f64::NAN, value))
@@ -232,4 +235,18 @@ pub fn batch(
     }
     cols.extend(kept);
     Ok(RecordBatch::try_new(schema.clone(), cols)?)
+}
+
+/// A leg's value in a summary.
+type LegValue = fn(&LegSummary) -> f64;
+
+/// The leg and the value of a regolith column (`REGOLITH_COLUMNS`) by its name.
+fn regolith_value(name: &str) -> Option<(usize, LegValue)> {
+    let (k, rest) = name.strip_prefix("leg")?.split_once('_')?;
+    let value: LegValue = match rest {
+        "sinkage_m" => |l| l.sinkage_m,
+        "soil_absorbed_j" => |l| l.soil_absorbed_j,
+        _ => return None,
+    };
+    Some((k.parse().ok()?, value))
 }

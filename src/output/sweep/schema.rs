@@ -70,6 +70,18 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
         "1",
         "legs whose damper used up its usable stroke (0 without dampers)",
     ));
+    if has_regolith(info.scenario_toml) {
+        for k in 0..legs {
+            for (name, unit, description) in REGOLITH_COLUMNS {
+                fields.push(f(
+                    &format!("leg{k}_{name}"),
+                    DataType::Float64,
+                    unit,
+                    description,
+                ));
+            }
+        }
+    }
     if has_limits(info.scenario_toml) {
         fields.push(f(
             LIMITS_COLUMN,
@@ -306,6 +318,33 @@ fn touchdown_fields() -> impl Iterator<Item = Field> {
             DataType::Float64
         };
         field(name, t, unit, description).with_nullable(true)
+    })
+}
+
+/// Each leg's regolith columns, in a sweep of a scenario on regolith (after
+/// `legs_bottomed`): name after `leg{k}_`, unit, description.
+pub const REGOLITH_COLUMNS: [(&str, &str, &str); 2] = [
+    (
+        "sinkage_m",
+        "m",
+        "depth of the footpad's last footprint in the regolith, once unloaded (MODEL.md 5.1)",
+    ),
+    (
+        "soil_absorbed_j",
+        "J",
+        "energy the regolith absorbed for good under the footpad",
+    ),
+];
+
+/// Whether the scenario text puts the lander on regolith (`surface.kind = "regolith"`: its
+/// sweep has the `REGOLITH_COLUMNS` of every leg).
+#[must_use]
+pub fn has_regolith(scenario_toml: &str) -> bool {
+    scenario_toml.parse::<toml::Table>().is_ok_and(|t| {
+        t.get("surface")
+            .and_then(|s| s.get("kind"))
+            .and_then(toml::Value::as_str)
+            == Some("regolith")
     })
 }
 

@@ -421,17 +421,20 @@ fn metadata(info: &TraceInfo<'_>, every: u64) -> BTreeMap<String, String> {
     {
         meta.insert(format!("touchdown.input.{name}"), value.to_string());
     }
-    for ((name, _), value) in crate::scenario::PARAMETER_FIELDS
-        .iter()
-        .zip(info.sample.parameters)
-    {
-        meta.insert(format!("touchdown.parameter.{name}"), value.to_string());
+    // The parameters that play a part in the scenario (all, if it cannot be read).
+    let scenario = crate::scenario::Scenario::from_toml(info.scenario_toml).ok();
+    for p in crate::scenario::Parameter::ALL {
+        if scenario.as_ref().is_none_or(|s| s.uses(p)) {
+            let value = info.sample.parameters[p as usize];
+            meta.insert(
+                format!("touchdown.parameter.{}", p.name()),
+                value.to_string(),
+            );
+        }
     }
     // The touchdown state a scenario gives (a table's values included), read back as the
     // values after the parameters are (`scene::trace`).
-    if crate::scenario::Scenario::from_toml(info.scenario_toml)
-        .is_ok_and(|s| s.initial.touchdown.is_some())
-    {
+    if scenario.is_some_and(|s| s.initial.touchdown.is_some()) {
         for ((name, _), value) in crate::scenario::INITIAL_FIELDS
             .iter()
             .zip(info.sample.touchdown)

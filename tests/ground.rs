@@ -1,0 +1,80 @@
+//! The ground through the command line (MODEL.md sections 4 and 5.1): a sweep on regolith
+//! writes each leg's footprint and the energy the soil kept, and the soil's drawn values;
+//! one on the elastic plane writes none of them; a sample's sweep row is its reference run.
+
+use crate::common::{TempDir, arrow_column, touchdown};
+use touchdown::reference::{self, Model};
+use touchdown::scenario::Scenario;
+
+const REGOLITH: &str = "[surface]\nkind = \"regolith\"\n[surface.regolith]\n\
+    cohesion_pa = { dist = \"uniform\", min = 0.0, max = 500.0 }\n\
+    bekker_n = { dist = \"uniform\", min = 0.8, max = 1.2 }\n";
+
+#[test]
+fn a_regolith_sweep_writes_footprints_and_the_soil_s_values() {
+    let dir = TempDir::new("ground-regolith-sweep");
+    dir.write("regolith.toml", REGOLITH);
+    for (args, out) in [
+        (
+            &["--scenario", "regolith.toml", "--samples", "300"][..],
+            "r.arrow",
+        ),
+        (&["--samples", "50"][..], "e.arrow"),
+    ] {
+        let run = touchdown(
+            dir.path(),
+            &[&["sweep", "--quiet", "--out", out], args].concat(),
+        );
+        assert_eq!(run.code, Some(0), "{run}");
+    }
+    let r = dir.join("r.arrow");
+    let e = dir.join("e.arrow");
+    let scenario = Scenario::from_toml(REGOLITH).unwrap();
+    let model = Model::new(&scenario);
+    let deepest = arrow_column(&r, "max_penetration_m").unwrap();
+    for k in 0..4 {
+        let sinkage = arrow_column(&r, &format!("leg{k}_sinkage_m")).unwrap();
+        let energy = arrow_column(&r, &format!("leg{k}_soil_absorbed_j")).unwrap();
+        // A footprint is never deeper than the deepest penetration, and never negative; a
+        // footpad that touched left energy in the soil.
+        for (i, ((z, e), d)) in sinkage.iter().zip(&energy).zip(&deepest).enumerate() {
+            assert!(
+                *z >= 0.0 && *z <= d + 1e-12,
+                "sample {i} leg {k}: sinkage {z}, deepest {d}"
+            );
+            assert!(*e >= 0.0, "sample {i} leg {k}: energy {e}");
+        }
+        assert!(
+            sinkage.iter().any(|z| *z > 1e-4),
+            "leg {k}: no footprint deeper than 0.1 mm"
+        );
+        assert!(arrow_column(&e, &format!("leg{k}_sinkage_m")).is_none());
+        // The sweep's rows are the reference's (f64 lanes: within the agreement test's 1 %).
+        for i in [0u64, 7, 123] {
+            let sample = touchdown::sampling::sample(&scenario, i);
+            let s = reference::run(&model.for_sample(&sample), &sample, |_| {});
+            let (a, b) = (s.legs[k].sinkage_m, sinkage[i as usize]);
+            assert!(
+                (a - b).abs() <= 0.01 * a.max(1e-4),
+                "sample {i} leg {k}: {a} vs {b}"
+            );
+            let (a, b) = (s.legs[k].soil_absorbed_j, energy[i as usize]);
+            assert!(
+                (a - b).abs() <= 0.01 * a.max(1e-3),
+                "sample {i} leg {k}: {a} vs {b}"
+            );
+        }
+    }
+    for name in ["cohesion_pa", "bekker_n"] {
+        let v = arrow_column(&r, name).unwrap();
+        assert!(
+            v.iter().any(|x| (*x - v[0]).abs() > 1e-9),
+            "{name} drawn: {v:?}"
+        );
+        assert!(arrow_column(&e, name).is_none());
+    }
+    assert!(
+        arrow_column(&r, "bekker_k_phi").is_none(),
+        "fixed: no column"
+    );
+}
