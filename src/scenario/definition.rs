@@ -95,7 +95,7 @@ table! {
 
 impl Scenario {
     /// The value of parameter `p` where the scenario fixes it (its field; for a drawn one,
-    /// the median of its distribution).
+    /// the median of its distribution; 0 for the soil's and the rocks' without them).
     #[must_use]
     pub fn parameter(&self, p: Parameter) -> f64 {
         match p {
@@ -110,8 +110,10 @@ impl Scenario {
             Parameter::CrushStrengthPsi => self.damper.stages[0].crush_strength_psi,
             Parameter::RmsHeightM => self.surface.roughness.rms_height_m,
             Parameter::FootpadAreaM2 => self.lander.footpad_area_m2,
-            Parameter::RockAbundance => f64::NAN,
-            p => self.surface.regolith.map_or(f64::NAN, |r| r.parameter(p)),
+            // 0 where the scenario has no rocks or no regolith: a sample compares equal
+            // to itself (no NaN), and a trace of it records none of them (`uses`).
+            Parameter::RockAbundance => 0.0,
+            p => self.surface.regolith.map_or(0.0, |r| r.parameter(p)),
         }
     }
 
