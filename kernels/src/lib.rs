@@ -11,6 +11,7 @@ pub mod lane;
 pub mod outcome;
 pub mod params;
 pub mod rigid_body;
+pub mod rocks;
 pub mod step;
 pub mod terrain;
 pub mod vec3;
