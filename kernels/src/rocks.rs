@@ -67,40 +67,56 @@ impl Rocks {
         assert!(!rocks.is_empty() && cells >= 1);
         assert!(tile_size_m > 0.0 && tile_size_m.is_finite());
         let inverse_cell_per_m = cells as f64 / tile_size_m;
-        let mut all = Vec::with_capacity(rocks.iter().map(Vec::len).sum());
+        let all: Vec<Rock> = rocks.iter().flatten().copied().collect();
+        assert!(u32::try_from(all.len()).is_ok(), "fewer than 2^32 rocks");
         let mut tile_start = vec![0u32];
-        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); rocks.len() * cells * cells];
+        for list in &rocks {
+            tile_start.push(tile_start[tile_start.len() - 1] + list.len() as u32);
+        }
+        let mut tile_of = Vec::with_capacity(all.len());
         for (tile, list) in rocks.iter().enumerate() {
             for rock in list {
                 assert!((0.0..tile_size_m).contains(&rock.u_m));
                 assert!((0.0..tile_size_m).contains(&rock.v_m));
                 assert!(rock.radius_m > 0.0 && rock.radius_m <= 0.25 * tile_size_m);
                 assert!(!rock.threshold.is_nan());
-                let index = u32::try_from(all.len()).expect("fewer than 2^32 rocks");
-                let reach = rock.radius_m + MARGIN_M;
-                let span = |x: f64| {
-                    let lo = ((x - reach) * inverse_cell_per_m).floor() as i64;
-                    let hi = ((x + reach) * inverse_cell_per_m).floor() as i64;
-                    // A disc at most half a tile wide meets no cell twice, but a tile of
-                    // one or two cells is met from both sides: enter each cell once.
-                    lo..=hi.min(lo + cells as i64 - 1)
-                };
-                for j in span(rock.v_m) {
-                    let row = (tile * cells + j.rem_euclid(cells as i64) as usize) * cells;
-                    for i in span(rock.u_m) {
-                        lists[row + i.rem_euclid(cells as i64) as usize].push(index);
-                    }
-                }
-                all.push(*rock);
+                tile_of.push(tile);
             }
-            tile_start.push(u32::try_from(all.len()).expect("fewer than 2^32 rocks"));
         }
-        let mut cell_start = Vec::with_capacity(lists.len() + 1);
-        cell_start.push(0u32);
-        let mut cell_rocks = Vec::with_capacity(lists.iter().map(Vec::len).sum());
-        for list in &lists {
-            cell_rocks.extend_from_slice(list);
-            cell_start.push(u32::try_from(cell_rocks.len()).expect("fewer than 2^32 entries"));
+        // The cells each rock covers, counted, then filled in (a counting sort by cell).
+        let covered = |index: usize, each: &mut dyn FnMut(usize)| {
+            let rock = &all[index];
+            let reach = rock.radius_m + MARGIN_M;
+            let span = |x: f64| {
+                let lo = ((x - reach) * inverse_cell_per_m).floor() as i64;
+                let hi = ((x + reach) * inverse_cell_per_m).floor() as i64;
+                // A disc at most half a tile wide meets no cell twice, but a tile of one or
+                // two cells is met from both sides: each cell once.
+                lo..=hi.min(lo + cells as i64 - 1)
+            };
+            for j in span(rock.v_m) {
+                let row = (tile_of[index] * cells + j.rem_euclid(cells as i64) as usize) * cells;
+                for i in span(rock.u_m) {
+                    each(row + i.rem_euclid(cells as i64) as usize);
+                }
+            }
+        };
+        let mut cell_start = vec![0u32; rocks.len() * cells * cells + 1];
+        for index in 0..all.len() {
+            covered(index, &mut |cell| cell_start[cell + 1] += 1);
+        }
+        for cell in 0..cell_start.len() - 1 {
+            cell_start[cell + 1] = cell_start[cell]
+                .checked_add(cell_start[cell + 1])
+                .expect("fewer than 2^32 entries");
+        }
+        let mut next = cell_start.clone();
+        let mut cell_rocks = vec![0u32; cell_start[cell_start.len() - 1] as usize];
+        for index in 0..all.len() {
+            covered(index, &mut |cell| {
+                cell_rocks[next[cell] as usize] = index as u32;
+                next[cell] += 1;
+            });
         }
         let top_m = all.iter().map(|r| r.radius_m).fold(0.0, f64::max);
         Rocks {
@@ -176,6 +192,10 @@ impl Rocks {
         pad_radius_m: f64,
         abundance: f64,
     ) -> (f64, f64, f64, f64) {
+        // No rock reaches above its radius, and none above the largest.
+        if height_m > self.top_m {
+            return (NO_ROCK, 0.0, 0.0, 1.0);
+        }
         let size = self.tile_size_m;
         let (u, v) = (
             u - size * (u * self.inverse_tile_size_per_m).floor(),
