@@ -43,6 +43,7 @@ pub mod qmc;
 pub mod reference;
 pub mod report;
 pub mod rng;
+pub mod rocks;
 pub mod run;
 pub mod sampling;
 pub mod scenario;

@@ -112,6 +112,18 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
         ),
         None => (terrain_tile, terrain_offset_m),
     };
+    // The rock tile and offset, from streams of their own (no table gives them).
+    let rocks = &scenario.surface.rocks;
+    let (rock_tile, rock_offset_m) = if scenario.rock_abundance_max() > 0.0 {
+        let tile = (stream(seed, "rock_tile").next_u64() % rocks.tiles as u64) as u32;
+        let offset = [
+            rocks.tile_size_m * uniform01(&mut stream(seed, "rock_offset_u_m")),
+            rocks.tile_size_m * uniform01(&mut stream(seed, "rock_offset_v_m")),
+        ];
+        (tile, offset)
+    } else {
+        (0, [0.0, 0.0])
+    };
     let mut s = Sample {
         index,
         seed,
@@ -119,6 +131,8 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
         parameters: [0.0; PARAMETERS],
         terrain_tile,
         terrain_offset_m,
+        rock_tile,
+        rock_offset_m,
         law: [0.0; LAW_PARAMETERS],
         touchdown: [0.0; STATE_VALUES],
     };

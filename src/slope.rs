@@ -4,6 +4,7 @@
 
 use crate::scenario::Sample;
 use glam::{DQuat, DVec3};
+use kernels::rocks::Rocks;
 use kernels::terrain::Terrain;
 
 /// The surface one sample lands on: a plane through the origin with its tangent axes,
@@ -20,6 +21,22 @@ pub struct Surface {
     pub tile: usize,
     /// Where the origin falls on that tile, along `tangent_u` and `tangent_v`, m.
     pub offset_m: [f64; 2],
+    /// Index of the rock tile the sample lands on (unused without rocks).
+    pub rock_tile: usize,
+    /// Where the origin falls on the rock tile, along `tangent_u` and `tangent_v`, m.
+    pub rock_offset_m: [f64; 2],
+}
+
+/// The rocks a sample's footpads may meet: the tiles, the sample's abundance and the
+/// footpads' radius (`Rocks::contact`).
+#[derive(Debug, Clone, Copy)]
+pub struct RockField<'a> {
+    /// The rock tiles, built for the sweep's largest abundance.
+    pub rocks: &'a Rocks,
+    /// The sample's rock abundance `k`.
+    pub abundance: f64,
+    /// The radius of a footpad, m.
+    pub pad_radius_m: f64,
 }
 
 impl Surface {
@@ -36,6 +53,8 @@ impl Surface {
             tangent_v: normal.cross(tangent_u),
             tile: sample.terrain_tile as usize,
             offset_m: sample.terrain_offset_m,
+            rock_tile: sample.rock_tile as usize,
+            rock_offset_m: sample.rock_offset_m,
         }
     }
 
@@ -65,6 +84,71 @@ impl Surface {
     #[must_use]
     pub fn penetration(&self, terrain: Option<&Terrain>, p: DVec3) -> (f64, DVec3) {
         self.penetration_at(terrain, p, self.normal.dot(p))
+    }
+
+    /// The height above the local ground at which a footpad whose lowest point is at `p`'s
+    /// place on the slope (its tangent coordinates) rests on the rocks of `field`, m (0
+    /// where it meets none): raised onto the deepest rock it meets at its height, again
+    /// until it meets none. A footpad set on a rock's top rests at the rock's height.
+    #[must_use]
+    pub fn rock_height(&self, field: &RockField<'_>, p: DVec3) -> f64 {
+        let (u, v) = (
+            self.tangent_u.dot(p) + self.rock_offset_m[0],
+            self.tangent_v.dot(p) + self.rock_offset_m[1],
+        );
+        let r = field.pad_radius_m;
+        let mut h = 0.0;
+        // Each pass rests the footpad on one rock more (a few at most: rocks are apart).
+        for _ in 0..64 {
+            let (depth, _, _, n_n) =
+                field
+                    .rocks
+                    .contact(self.rock_tile, u, v, h, r, field.abundance);
+            if depth <= 0.0 {
+                break;
+            }
+            // The footpad's centre is `c` from the rock's, `|c| = (h + r) / n_n`; it rests
+            // where `|c| = R + r = depth + |c|`, at the same distance across.
+            let c = (h + r) / n_n;
+            let reach = depth + c;
+            let across_squared = (c * c - (h + r) * (h + r)).max(0.0);
+            h = (reach * reach - across_squared).sqrt() - r;
+        }
+        h
+    }
+
+    /// `penetration_at` of a footpad at `p` among `rocks` too: the deeper of its contact
+    /// with the ground and with a rock (MODEL.md section 4, "Rocks"), that contact's normal,
+    /// and whether it is the rock's (whose contact law is the elastic one, also on regolith).
+    #[inline]
+    #[must_use]
+    pub fn contact_at(
+        &self,
+        terrain: Option<&Terrain>,
+        rocks: Option<&RockField<'_>>,
+        p: DVec3,
+        height: f64,
+    ) -> (f64, DVec3, bool) {
+        let (penetration, normal) = self.penetration_at(terrain, p, height);
+        let Some(field) = rocks else {
+            return (penetration, normal, false);
+        };
+        // The rock stands on the local ground: the footpad's height above it is its
+        // clearance there.
+        let (rock, n_u, n_v, n_n) = field.rocks.contact(
+            self.rock_tile,
+            self.tangent_u.dot(p) + self.rock_offset_m[0],
+            self.tangent_v.dot(p) + self.rock_offset_m[1],
+            -penetration,
+            field.pad_radius_m,
+            field.abundance,
+        );
+        if rock > penetration {
+            let n = self.tangent_u * n_u + self.tangent_v * n_v + self.normal * n_n;
+            (rock, n, true)
+        } else {
+            (penetration, normal, false)
+        }
     }
 
     /// `penetration` of `p`, given its height above the base plane (`normal . p`, which

@@ -370,6 +370,19 @@ fn kernels_agree_with_the_reference() {
             400,
         ),
         (
+            // Rocks drawn per sample (the tiles of the largest abundance, thinned): footpads
+            // land on them, strike their sides, and the lander starts above them.
+            "rocks, abundance drawn",
+            scenario("[surface.rocks]\nabundance = { dist = \"uniform\", min = 0.02, max = 0.2 }"),
+            400,
+        ),
+        (
+            // Rocks on regolith: a footpad on a rock meets the elastic law, off it the soil.
+            "rocks on regolith",
+            scenario("[surface]\nkind = \"regolith\"\n[surface.rocks]\nabundance = 0.15"),
+            300,
+        ),
+        (
             // Stiff contact, slopes past the friction angle: the early `sliding` and
             // `bouncing` rules fire (in about 8 % of the samples).
             "MuJoCo-matched",
@@ -412,12 +425,12 @@ fn kernels_agree_with_the_reference() {
         );
         // f64 lanes round as the reference does, up to the order of sums: few samples
         // drift (4-7 of 8600; 1 of the 600 with a control loop, by a strut load; with the
-        // regolith scenarios 10-16 of 10200). f32
+        // regolith and rock scenarios 11-17 of 10900). f32
         // lanes round 2^29 times coarser, and a lander's bounces amplify it: measured
         // 3.6-3.7 % (252-257 of 7000) drift in f32 in the three instruction sets, and with
         // the strut loads' peaks compared (issue 30) 4.3-4.4 % (374-375 of 8600); with the
-        // regolith scenarios and their footprints 4.3-4.4 % (440-450 of 10200, of which
-        // 3.5-5.3 % of the regolith ones). A defect of the f32 lanes (a
+        // regolith and rock scenarios and their footprints 4.3-4.4 % (466-477 of 10900;
+        // 10-17 of them in f64). A defect of the f32 lanes (a
         // constant rounded to 0, a threshold lost) shifts results in most samples that
         // meet it, not a few percent. A control loop in f32 amplifies more: every control
         // instant quantises on-times to minimum impulse bits, and a rounding that moves a

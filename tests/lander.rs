@@ -19,6 +19,8 @@ pub(crate) fn sample_of(inputs: Inputs<f64>) -> Sample {
         parameters: touchdown::scenario::Parameter::ALL.map(|p| default.parameter(p)),
         terrain_tile: 0,
         terrain_offset_m: [0.0; 2],
+        rock_tile: 0,
+        rock_offset_m: [0.0; 2],
         law: [0.0; touchdown::scenario::LAW_PARAMETERS],
         touchdown: [0.0; touchdown::scenario::STATE_VALUES],
     }

@@ -18,7 +18,10 @@ const LAYERS: &[(&str, &[&str])] = &[
         "data model",
         &["rng", "dist", "qmc", "stability", "scenario"],
     ),
-    ("physics", &["slope", "terrain", "control", "reference"]),
+    (
+        "physics",
+        &["slope", "terrain", "rocks", "control", "reference"],
+    ),
     ("Monte Carlo engine", &["sampling", "sweep"]),
     ("files", &["output", "table"]),
     (

@@ -73,6 +73,10 @@ pub struct SurfaceLanes<L> {
     pub offset_v_m: L,
     /// The terrain tile of each lane (the first `L::LANES` used).
     pub tile: [usize; MAX_LANES],
+    /// The rock tile of each lane and where the origin falls on it.
+    pub rock_tile: [usize; MAX_LANES],
+    pub rock_offset_u_m: L,
+    pub rock_offset_v_m: L,
 }
 
 /// What the outcome tracking remembers, per lane.
@@ -178,6 +182,8 @@ pub struct LaneInit {
     pub tangent_v: [f64; 3],
     pub offset_m: [f64; 2],
     pub tile: usize,
+    pub rock_offset_m: [f64; 2],
+    pub rock_tile: usize,
 }
 
 /// The thrust of one lane until its next control event (`ThrustLanes`, one lane).
@@ -259,6 +265,9 @@ impl<L: Lane> Block<L> {
                 offset_u_m: zero,
                 offset_v_m: zero,
                 tile: [0; MAX_LANES],
+                rock_tile: [0; MAX_LANES],
+                rock_offset_u_m: zero,
+                rock_offset_v_m: zero,
             },
             track: Track {
                 start_m: Vec3::ZERO,
@@ -334,6 +343,9 @@ impl<L: Lane> Block<L> {
         set(&mut s.offset_u_m, init.offset_m[0]);
         set(&mut s.offset_v_m, init.offset_m[1]);
         s.tile[i] = init.tile;
+        s.rock_tile[i] = init.rock_tile;
+        set(&mut s.rock_offset_u_m, init.rock_offset_m[0]);
+        set(&mut s.rock_offset_v_m, init.rock_offset_m[1]);
         let t = &mut self.track;
         t.start_m.set_lane(i, init.position_m);
         set(&mut t.rest_s, 0.0);
@@ -376,8 +388,8 @@ impl<L: Lane> Block<L> {
 
     /// Moves lane `i`'s origin along its surface's base plane to the foot of its CG, outside
     /// the kernels (in f64): every position it keeps (CG, friction and rest anchors, the
-    /// start of its track) moves by the same in-plane vector `s`, and its terrain's offsets
-    /// by `s` along the plane's axes, so that nothing it computes changes but the rounding
+    /// start of its track) moves by the same in-plane vector `s`, and its terrain's and rocks'
+    /// offsets by `s` along the plane's axes, so that nothing it computes changes but the rounding
     /// of its positions, which then stay small. The kernels ask for it (`outcome_bits`)
     /// when the CG's foot is farther than `L::RECENTRE_M` from the origin: f32 lanes only.
     pub fn recentre(&mut self, i: usize) {
@@ -408,6 +420,11 @@ impl<L: Lane> Block<L> {
         self.surface.offset_u_m.set_lane(i, u + du);
         let v = self.surface.offset_v_m.lane(i);
         self.surface.offset_v_m.set_lane(i, v + dv);
+        // The rocks stay where they are on the ground, as the terrain does.
+        let u = self.surface.rock_offset_u_m.lane(i);
+        self.surface.rock_offset_u_m.set_lane(i, u + du);
+        let v = self.surface.rock_offset_v_m.lane(i);
+        self.surface.rock_offset_v_m.set_lane(i, v + dv);
     }
 
     /// Empties lane `i`: it takes no more steps and decides nothing.

@@ -24,8 +24,9 @@ pub(crate) fn tip_in_body<L: Lane, const DAMPERS: bool>(
 
 /// The force of one leg on every lane (zero where `contact` is false), with its normal
 /// magnitude and the mask of lanes where the footpad slips, on the elastic plane or, with
-/// `REGOLITH`, on the soil of `p.soil`. Updates the friction anchor, the footprint and the
-/// damper of the leg. (The reference also returns the friction magnitude, for the trace;
+/// `REGOLITH`, on the soil of `p.soil` (but in the lanes of `on_rock`, whose footpad meets a
+/// rock: rocks do not give way). Updates the friction anchor, the footprint and the damper
+/// of the leg. (The reference also returns the friction magnitude, for the trace;
 /// nothing in a sweep reads it.)
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
@@ -38,6 +39,7 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
     tip: Vec3<L>,
     tip_velocity: Vec3<L>,
     strut_up: Vec3<L>,
+    on_rock: L::Mask,
     leg: &mut LegLanes<L>,
 ) -> (Vec3<L>, L, L::Mask) {
     let zero = L::splat(0.0);
@@ -46,11 +48,13 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
     let mut normal_n = match (REGOLITH, &p.soil) {
         (true, Some(s)) => {
             // The soil's push in place of the spring (a touchdown away from the footprint
-            // first leaves it for virgin soil).
-            if touches_down.to_bitmask() != 0 {
+            // first leaves it for virgin soil); a footpad on a rock meets the spring.
+            let on_soil = contact & !on_rock;
+            let soil_touches_down = touches_down & !on_rock;
+            if soil_touches_down.to_bitmask() != 0 {
                 regolith::footprint(
                     s,
-                    touches_down,
+                    soil_touches_down,
                     tip - leg.anchor_m,
                     normal,
                     &mut leg.sinkage_max_m,
@@ -58,13 +62,14 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
                     &mut leg.soil_absorbed_j,
                 );
             }
-            let spring = regolith::soil_force(
+            let soil = regolith::soil_force(
                 s,
-                contact,
+                on_soil,
                 penetration,
                 &mut leg.sinkage_max_m,
                 &mut leg.soil_force_max_n,
             );
+            let spring = on_rock.select(p.stiffness_n_per_m * penetration, soil);
             p.damping_n_s_per_m
                 .mul_neg_add(normal_velocity, spring)
                 .max(zero)
@@ -93,14 +98,14 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
     );
 
     if let (true, Some(h)) = (DAMPERS, &p.honeycomb) {
-        let cap = friction_cap::<L, REGOLITH>(p, normal_n, penetration);
+        let cap = friction_cap::<L, REGOLITH>(p, normal_n, penetration, on_rock);
         let friction_now =
             friction * (cap / friction.length().max(cap).max(L::splat(L::MIN_POSITIVE)));
         let load_n = (normal * normal_n + friction_now).dot(strut_up);
         // The normal force falls with the stroke along the contact's spring: the plane's,
         // or the soil's unloading line.
         let spring_n_per_m = match (REGOLITH, &p.soil) {
-            (true, Some(s)) => s.unloading_n_per_m,
+            (true, Some(s)) => on_rock.select(p.stiffness_n_per_m, s.unloading_n_per_m),
             _ => p.stiffness_n_per_m,
         };
         let relief = spring_n_per_m + p.damping_n_s_per_m / dt;
@@ -118,7 +123,7 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
         normal_n = relieved;
     }
 
-    let cap = friction_cap::<L, REGOLITH>(p, normal_n, penetration);
+    let cap = friction_cap::<L, REGOLITH>(p, normal_n, penetration, on_rock);
     // `|friction| > cap`, compared squared (both sides are >= 0): only slipping lanes need
     // the root and the division.
     let magnitude_squared = friction.length_squared();
@@ -138,13 +143,19 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
 }
 
 /// The most the friction spring may pull with: Coulomb's `mu F_N`, and on regolith the
-/// passive earth pressure on the side of the sunk footpad besides.
+/// passive earth pressure on the side of the sunk footpad besides (not on a rock).
 #[inline(always)]
-fn friction_cap<L: Lane, const REGOLITH: bool>(p: &Params<L>, normal_n: L, penetration: L) -> L {
+fn friction_cap<L: Lane, const REGOLITH: bool>(
+    p: &Params<L>,
+    normal_n: L,
+    penetration: L,
+    on_rock: L::Mask,
+) -> L {
     match (REGOLITH, &p.soil) {
-        (true, Some(s)) => p
-            .friction_coefficient
-            .mul_add(normal_n, regolith::passive_force(s, penetration)),
+        (true, Some(s)) => {
+            let passive = on_rock.select(L::splat(0.0), regolith::passive_force(s, penetration));
+            p.friction_coefficient.mul_add(normal_n, passive)
+        }
         _ => p.friction_coefficient * normal_n,
     }
 }

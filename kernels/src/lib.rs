@@ -12,6 +12,7 @@ pub mod outcome;
 pub mod params;
 pub mod regolith;
 pub mod rigid_body;
+pub mod rocks;
 pub mod step;
 pub mod terrain;
 pub mod vec3;

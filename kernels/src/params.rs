@@ -1,6 +1,7 @@
 //! Parameters of a sweep, broadcast to lanes once so that the step loads nothing twice.
 
 use crate::lane::Lane;
+use crate::rocks::Rocks;
 use crate::terrain::Terrain;
 use crate::vec3::Vec3;
 
@@ -72,6 +73,11 @@ pub struct Params<L> {
     /// Regolith under the footpads (`None`: the elastic plane).
     pub soil: Option<SoilParams<L>>,
     pub terrain: Option<Terrain>,
+    /// Rocks on the ground (`None`: none), each lane at its own abundance.
+    pub rocks: Option<Rocks>,
+    pub rock_abundance: L,
+    /// The footpads' radius (their sphere's among rocks).
+    pub pad_radius_m: L,
     pub step_s: L,
     pub flight_step_max_s: L,
     /// Whether free flight may take steps longer than `step_s`.
@@ -205,6 +211,8 @@ impl<L: Lane> Params<L> {
             (None, None) => {}
             _ => panic!("regolith in both or neither"),
         }
+        one(&mut self.rock_abundance, &from.rock_abundance, i);
+        one(&mut self.pad_radius_m, &from.pad_radius_m, i);
         one(&mut self.step_s, &from.step_s, i);
         one(&mut self.flight_step_max_s, &from.flight_step_max_s, i);
         one(&mut self.t_max_s, &from.t_max_s, i);

@@ -6,23 +6,58 @@ use crate::contact::{self, tip_in_body};
 use crate::lane::{Lane, Mask, all_false, min_into};
 use crate::params::Params;
 use crate::rigid_body;
+use crate::rocks::contact_lanes;
 use crate::terrain::height_lanes;
 use crate::vec3::Vec3;
 
 /// Penetration below the local surface along the local normal, and that normal, of a
 /// footpad `height` above the base plane (`height_m` of `footpad_heights`), at `tip` on
-/// rough terrain (the plane needs no position: its penetration is `-height`).
+/// rough terrain (the plane needs no position: its penetration is `-height`); with `TERRAIN`
+/// among rocks too, the deeper of the ground's and a rock's contact, with the mask of the
+/// lanes where it is the rock's (the reference's `Surface::contact_at`).
 #[inline(always)]
 fn penetration<L: Lane, const TERRAIN: bool>(
     p: &Params<L>,
     s: &SurfaceLanes<L>,
     tip: impl FnOnce() -> Vec3<L>,
     height: L,
-) -> (L, Vec3<L>) {
-    match &p.terrain {
+) -> (L, Vec3<L>, L::Mask) {
+    if !TERRAIN {
         // The plane itself: no height, and its normal is already a unit vector.
-        Some(t) if TERRAIN => {
-            let tip = tip();
+        return (-height, s.normal, all_false::<L>());
+    }
+    let tip = tip();
+    let (penetration, normal) = ground::<L>(p, s, tip, height);
+    let Some(rocks) = &p.rocks else {
+        return (penetration, normal, all_false::<L>());
+    };
+    // The rock stands on the local ground: the footpad's height above it is its clearance.
+    let (rock, n_u, n_v, n_n) = contact_lanes(
+        rocks,
+        &s.rock_tile,
+        s.tangent_u.dot(tip) + s.rock_offset_u_m,
+        s.tangent_v.dot(tip) + s.rock_offset_v_m,
+        -penetration,
+        p.pad_radius_m,
+        p.rock_abundance,
+    );
+    let on_rock = rock.simd_gt(penetration);
+    if on_rock.to_bitmask() == 0 {
+        return (penetration, normal, on_rock);
+    }
+    let rock_normal = s.tangent_u * n_u + s.tangent_v * n_v + s.normal * n_n;
+    (
+        on_rock.select(rock, penetration),
+        Vec3::select(on_rock, rock_normal, normal),
+        on_rock,
+    )
+}
+
+/// The ground's part of `penetration`: the terrain's or the plane's.
+#[inline(always)]
+fn ground<L: Lane>(p: &Params<L>, s: &SurfaceLanes<L>, tip: Vec3<L>, height: L) -> (L, Vec3<L>) {
+    match &p.terrain {
+        Some(t) => {
             let (h, dh_du, dh_dv) = height_lanes(
                 t,
                 &s.tile,
@@ -36,7 +71,7 @@ fn penetration<L: Lane, const TERRAIN: bool>(
             let inv = L::splat(1.0) / m.length();
             ((h - height) * inv, m * inv)
         }
-        _ => (-height, s.normal),
+        None => (-height, s.normal),
     }
 }
 
@@ -68,7 +103,7 @@ pub fn step<
         if DAMPERS {
             out.start_stroke_m = leg_state.stroke_m;
         }
-        let (penetration, normal) = penetration::<L, TERRAIN>(
+        let (penetration, normal, on_rock) = penetration::<L, TERRAIN>(
             p,
             &block.surface,
             move || position + rotation.mul_vec3(tip_b),
@@ -103,6 +138,7 @@ pub fn step<
                 tip,
                 tip_velocity,
                 strut_up,
+                on_rock,
                 leg_state,
             );
             force_n += f;
@@ -274,7 +310,7 @@ pub struct Advanced {
 pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>, steps: u32) -> Advanced {
     match (
         p.honeycomb.is_some(),
-        p.terrain.is_some(),
+        p.terrain.is_some() || p.rocks.is_some(),
         p.thrust,
         p.soil.is_some(),
     ) {
@@ -307,7 +343,8 @@ pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>, steps: u32) -> Adva
     }
 }
 
-/// `advance` with (`DAMPERS`) or without dampers, on rough terrain (`TERRAIN`) or a plane,
+/// `advance` with (`DAMPERS`) or without dampers, on rough terrain or among rocks
+/// (`TERRAIN`) or on a plane,
 /// with (`THRUST`) or without a control loop, on regolith (`REGOLITH`) or the elastic
 /// surface.
 #[inline(always)]

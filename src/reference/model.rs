@@ -107,6 +107,10 @@ pub struct Model {
     pub regolith: Option<crate::scenario::Regolith>,
     /// The soil under the footpads, derived from `regolith` (`None`: the elastic plane).
     pub soil: Option<Soil>,
+    /// The rock tiles, built for the largest abundance of any sample (`None`: no rocks).
+    pub rocks: Option<kernels::rocks::Rocks>,
+    /// The sample's rock abundance `k` (the median where drawn, until `for_sample`).
+    pub rock_abundance: f64,
     /// The rough-terrain tiles (`None`: the bare slope plane).
     pub terrain: Option<Terrain>,
     /// Step whenever a footpad may touch the surface within it.
@@ -218,6 +222,14 @@ impl Model {
                 .surface
                 .regolith
                 .map(|r| Soil::of(&r, s.lander.footpad_area_m2, s.gravity_m_s2)),
+            rocks: crate::rocks::build(
+                &crate::scenario::Rocks {
+                    abundance: s.rock_abundance_max(),
+                    ..s.surface.rocks.clone()
+                },
+                s.seed,
+            ),
+            rock_abundance: s.surface.rocks.abundance,
             // A drawn roughness: the tiles of the largest, scaled to the median here and to
             // each sample's own value by `for_sample`.
             terrain: {
@@ -320,7 +332,7 @@ impl Model {
                     }
                 }
                 Parameter::FootpadAreaM2 => m.footpad_area_m2 = x,
-                Parameter::RockAbundance => {}
+                Parameter::RockAbundance => m.rock_abundance = x,
                 Parameter::BekkerKC => set_soil(&mut m, |r| r.bekker_k_c = x),
                 Parameter::BekkerKPhi => set_soil(&mut m, |r| r.bekker_k_phi = x),
                 Parameter::BekkerN => set_soil(&mut m, |r| r.bekker_n = x),
@@ -354,13 +366,36 @@ impl Model {
         self.thresholds.early_sliding
             && self.terrain.is_none()
             && self.soil.is_none()
+            && self.rocks.is_none()
             && crush_least > slide_load
     }
 
-    /// Height of the highest point of the terrain above the plane (0 for the plane), m.
+    /// Height of the highest point of the terrain above the plane (0 for the plane), m: the
+    /// terrain's highest node, and the highest rock on it.
     #[must_use]
     pub fn terrain_top_m(&self) -> f64 {
         self.terrain.as_ref().map_or(0.0, |t| t.height_max_m())
+            + self
+                .rocks
+                .as_ref()
+                .map_or(0.0, kernels::rocks::Rocks::top_m)
+    }
+
+    /// The radius of a footpad, `sqrt(A / pi)`, m (its bearing radius on regolith, its
+    /// sphere's among rocks).
+    #[must_use]
+    pub fn pad_radius_m(&self) -> f64 {
+        (self.footpad_area_m2 / std::f64::consts::PI).sqrt()
+    }
+
+    /// The rocks a footpad of this model meets (`None` without rocks).
+    #[must_use]
+    pub fn rock_field(&self) -> Option<crate::slope::RockField<'_>> {
+        self.rocks.as_ref().map(|rocks| crate::slope::RockField {
+            rocks,
+            abundance: self.rock_abundance,
+            pad_radius_m: self.pad_radius_m(),
+        })
     }
 
     /// Largest distance of a footpad from the CG, m.

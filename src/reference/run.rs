@@ -56,15 +56,18 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
             )
     };
     let rate = DVec3::new(x.rate_x_deg_s, x.rate_y_deg_s, x.rate_z_deg_s) * (1.0f64).to_radians();
-    // Height along the normal that puts the lowest footpad `clearance_m` above the terrain;
-    // the terrain under a footpad does not change as the CG moves along the normal.
+    // Height along the normal that puts the lowest footpad `clearance_m` above the terrain
+    // (and the rocks on it); the terrain under a footpad does not change as the CG moves
+    // along the normal.
+    let rocks = model.rock_field();
     let lift = model
         .legs
         .iter()
         .map(|leg| {
             let arm = attitude * leg.tip_m;
             let (h, _, _) = surface.height(model.terrain.as_ref(), arm);
-            h - surface.normal.dot(arm)
+            let rock = rocks.as_ref().map_or(0.0, |f| surface.rock_height(f, arm));
+            h + rock - surface.normal.dot(arm)
         })
         .fold(f64::NEG_INFINITY, f64::max);
     State {

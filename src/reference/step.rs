@@ -117,6 +117,7 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
     let body = state.body;
     let rotation = DMat3::from_quat(body.attitude);
     let rate_i = rotation * body.rate_rad_s;
+    let rocks = model.rock_field();
     let normal_b = rotation.transpose() * surface.normal;
     let mut force_n = DVec3::ZERO;
     // Moments about the CG, summed in I and turned into B once: (R a) x (R b) = R (a x b).
@@ -127,13 +128,15 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
         let tip = body.position_m + arm;
         let tip_velocity = body.velocity_m_s + rate_i.cross(arm);
         let height = footpad_height(surface, &body, normal_b, tip_b);
-        let (penetration, normal) = surface.penetration_at(model.terrain.as_ref(), tip, height);
+        let (penetration, normal, on_rock) =
+            surface.contact_at(model.terrain.as_ref(), rocks.as_ref(), tip, height);
         // The strut direction, footpad to hip, in I: the damper's and the strut loads'.
         let strut_up = -(rotation * leg.strut_axis);
         let f = if penetration > 0.0 {
             contact::leg_force(
                 &model.contact,
-                model.soil.as_ref(),
+                // A footpad on a rock meets the elastic law (rocks do not give way).
+                model.soil.as_ref().filter(|_| !on_rock),
                 model.honeycomb.as_ref(),
                 dt,
                 penetration,

@@ -112,7 +112,7 @@ impl Scenario {
             Parameter::FootpadAreaM2 => self.lander.footpad_area_m2,
             // 0 where the scenario has no rocks or no regolith: a sample compares equal
             // to itself (no NaN), and a trace of it records none of them (`uses`).
-            Parameter::RockAbundance => 0.0,
+            Parameter::RockAbundance => self.surface.rocks.abundance,
             p => self.surface.regolith.map_or(0.0, |r| r.parameter(p)),
         }
     }
@@ -130,9 +130,20 @@ impl Scenario {
             | Parameter::FrictionCoefficient
             | Parameter::CrushStrengthPsi
             | Parameter::RmsHeightM => true,
-            Parameter::RockAbundance => false,
+            Parameter::RockAbundance => self.rock_abundance_max() > 0.0,
+            Parameter::FootpadAreaM2 => {
+                self.surface.regolith.is_some() || self.rock_abundance_max() > 0.0
+            }
             _ => self.surface.regolith.is_some(),
         }
+    }
+
+    /// The largest rock abundance of any sample (the drawn one's largest value): the rock
+    /// tiles are built for it, and a sample meets rocks where it is above 0.
+    #[must_use]
+    pub fn rock_abundance_max(&self) -> f64 {
+        self.sampled[Parameter::RockAbundance as usize]
+            .map_or(self.surface.rocks.abundance, |d| d.support().1)
     }
 
     /// The largest terrain roughness of any sample (the drawn one's largest value): the

@@ -22,6 +22,10 @@ pub struct Sample {
     pub terrain_tile: u32,
     /// Offset of the landing point in the tile, along the slope's tangent axes, m.
     pub terrain_offset_m: [f64; 2],
+    /// Which rock tile this sample lands on (0 without rocks).
+    pub rock_tile: u32,
+    /// Offset of the landing point in the rock tile, along the slope's tangent axes, m.
+    pub rock_offset_m: [f64; 2],
     /// The value of each built-in control law's parameter (`Control::parameters`) for this
     /// sample: its draw, or the scenario's number (0 where the scenario has no such law).
     pub law: [f64; LAW_PARAMETERS],

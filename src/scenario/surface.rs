@@ -4,6 +4,7 @@ use super::error::ScenarioError;
 use super::inputs::{Sampled, read_parameter};
 use super::reader::table;
 use super::regolith::{Regolith, read_regolith};
+use super::rocks::{Rocks, read_rocks};
 
 /// What the ground under the footpads is (MODEL.md section 5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -76,6 +77,8 @@ table! {
         friction_damping_n_s_per_m: f64 = r.non_negative(key)?,
         /// The terrain, `[surface.roughness]`.
         roughness: Roughness = r.section(key, |t| read_roughness(t, sampled))?,
+        /// The rocks, `[surface.rocks]` (none where its abundance is 0, the default).
+        rocks: Rocks = r.section(key, |t| read_rocks(t, sampled))?,
         /// The soil, `[surface.regolith]`, with `kind = "regolith"` (its defaults where the
         /// file leaves the table out); `None` on the elastic plane.
         regolith: Option<Regolith> = match kind {

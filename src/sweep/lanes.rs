@@ -56,6 +56,9 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
             pad_radius_m: lane(s.pad_radius_m),
         }),
         terrain: m.terrain.clone(),
+        rocks: m.rocks.clone(),
+        rock_abundance: lane(m.rock_abundance),
+        pad_radius_m: lane(m.pad_radius_m()),
         step_s: lane(m.step_s),
         flight_step_max_s: lane(m.flight_step_max_s),
         long_flight_steps: m.flight_step_max_s > m.step_s,
@@ -108,6 +111,8 @@ pub(super) fn sample_lane_init(model: &Model, sample: &Sample) -> LaneInit {
         tangent_v: surface.tangent_v.to_array(),
         offset_m: surface.offset_m,
         tile: surface.tile,
+        rock_offset_m: surface.rock_offset_m,
+        rock_tile: surface.rock_tile,
     }
 }
 

@@ -18,6 +18,7 @@ mod honeycomb;
 mod outcome;
 mod regolith;
 mod restitution;
+mod rocks;
 mod sliding;
 mod tipping;
 mod touchdown_state;
