@@ -78,3 +78,59 @@ fn a_regolith_sweep_writes_footprints_and_the_soil_s_values() {
         "fixed: no column"
     );
 }
+
+#[test]
+fn a_regolith_trace_prints_the_footprints_of_its_sweep_row() {
+    let dir = TempDir::new("ground-regolith-trace");
+    dir.write("regolith.toml", REGOLITH);
+    let sweep = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--quiet",
+            "--scenario",
+            "regolith.toml",
+            "--samples",
+            "16",
+            "--out",
+            "r.arrow",
+        ],
+    );
+    assert_eq!(sweep.code, Some(0), "{sweep}");
+    let trace = touchdown(
+        dir.path(),
+        &[
+            "trace",
+            "--scenario",
+            "regolith.toml",
+            "--sample",
+            "5",
+            "--out",
+            "t.arrow",
+        ],
+    );
+    assert_eq!(trace.code, Some(0), "{trace}");
+    assert!(
+        trace.stdout.contains("footprint mm   soil kept J"),
+        "{trace}"
+    );
+    for k in 0..4 {
+        // The printout rounds to a micrometre and 0.1 mJ; the sweep (f64 lanes) agrees with
+        // the reference within 1 % (tests/agreement.rs).
+        let z = arrow_column(&dir.join("r.arrow"), &format!("leg{k}_sinkage_m")).unwrap()[5];
+        let row = trace
+            .stdout
+            .lines()
+            .find(|l| {
+                l.trim_start().starts_with(&format!("{k} ")) && l.split_whitespace().count() == 6
+            })
+            .unwrap_or_else(|| panic!("leg {k} row in {trace}"));
+        let printed: f64 = row.split_whitespace().nth(4).unwrap().parse().unwrap();
+        assert!(
+            (printed - z * 1e3).abs() <= 1e-3 + 0.01 * z * 1e3,
+            "leg {k}: {printed} mm, sweep {z}"
+        );
+    }
+    let elastic = touchdown(dir.path(), &["trace", "--sample", "5", "--out", "e.arrow"]);
+    assert!(!elastic.stdout.contains("footprint"), "{elastic}");
+}

@@ -132,14 +132,30 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
         "peak acceleration", s.peak_acceleration_m_s2, s.peak_acceleration_z_body_m_s2,
         "max penetration", s.max_penetration_m * 1e3,
     ));
-    t.push_str("\n  leg  peak normal force N   stroke mm   absorbed J\n");
+    // On regolith two more columns: the footprint's depth and the soil's energy, as the
+    // sweep's `leg{k}_sinkage_m` and `leg{k}_soil_absorbed_j`.
+    let soil = scenario.surface.regolith.is_some();
+    t.push_str("\n  leg  peak normal force N   stroke mm   absorbed J");
+    t.push_str(if soil {
+        "   footprint mm   soil kept J\n"
+    } else {
+        "\n"
+    });
     for (k, l) in s.legs.iter().enumerate() {
         t.push_str(&format!(
-            "  {k:>3}  {:>19.2}   {:>9.3}   {:>10.4}\n",
+            "  {k:>3}  {:>19.2}   {:>9.3}   {:>10.4}",
             l.peak_normal_force_n,
             l.stroke_m * 1e3,
             l.absorbed_j
         ));
+        if soil {
+            t.push_str(&format!(
+                "   {:>12.3}   {:>11.4}",
+                l.sinkage_m * 1e3,
+                l.soil_absorbed_j
+            ));
+        }
+        t.push('\n');
     }
     t.push_str(&flown(scenario, s));
     t
