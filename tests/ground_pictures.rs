@@ -130,6 +130,35 @@ fn the_rocks_of_a_patch_are_the_sample_s_every_image_once() {
     assert!(rested >= 1, "no footpad rests on a rock");
 }
 
+#[test]
+fn on_regolith_a_footpad_on_a_rock_is_not_sunk_and_one_in_the_soil_is() {
+    let dir = TempDir::new("scene-sinkage");
+    let abundance = "{ dist = \"uniform\", min = 0.1, max = 0.4 }";
+    let scenario = format!("[surface]\nkind = \"regolith\"\n{}", rocky(abundance));
+    // Sample 4 ends with footpad 0 on a rock's top (3 cm above the plane) and footpads 2
+    // and 3 pressed into the soil (found by running samples 3 and 4).
+    trace(&dir, "both", &scenario, "4");
+    let scene = Scene::read(&dir.join("both.arrow")).expect("read the trace");
+    let t = scene.trace.span_s().1;
+    let depth = |leg: usize| scene.trace.value(&format!("leg{leg}_penetration_m"), t);
+    let (on_rock, in_soil) = (0..4).partition::<Vec<_>, _>(|k| {
+        let tip = ["x", "y", "z"].map(|a| scene.trace.value(&format!("leg{k}_tip_{a}_m"), t));
+        scene.surface.normal.dot(DVec3::from_array(tip)) > 0.01
+    });
+    assert!(
+        !on_rock.is_empty() && !in_soil.is_empty(),
+        "{on_rock:?} {in_soil:?}"
+    );
+    for k in on_rock.into_iter().filter(|k| depth(*k) > 0.0) {
+        assert_eq!(scene.sinkage_m(k, t), 0.0, "leg {k} on a rock");
+    }
+    let sunk: Vec<usize> = in_soil.into_iter().filter(|k| depth(*k) > 0.0).collect();
+    assert!(!sunk.is_empty());
+    for k in sunk {
+        assert_eq!(scene.sinkage_m(k, t), depth(k), "leg {k} in the soil");
+    }
+}
+
 /// The pixels of the last frame of a GIF whose colour is a grey (the rocks' and the
 /// captions'), in the picture's part under the captions and above the scale bar.
 fn greys(path: &Path) -> usize {
@@ -200,6 +229,19 @@ fn animate_draws_rocks_and_sunk_footpads_and_view_holds_them() {
     }
     let soft = data(&page("soft"));
     assert_eq!(soft["regolith"], serde_json::Value::Bool(true));
+    // Each leg's sinkage at every time of the page; the lander ends sunk over 10 cm.
+    let times = soft["time"].as_array().unwrap().len();
+    let sinkage = soft["sinkage_m"].as_array().expect("sinkage_m");
+    assert_eq!(sinkage.len(), 4);
+    for leg in sinkage {
+        let leg = leg.as_array().unwrap();
+        assert_eq!(leg.len(), times);
+        assert!(
+            leg[times - 1].as_f64().unwrap() > 0.1,
+            "{:?}",
+            leg[times - 1]
+        );
+    }
     assert!(soft.get("rocks").is_none());
     for name in ["bare", "hard"] {
         let text = page(name);

@@ -177,21 +177,8 @@ impl View<'_> {
         {
             dark(self.disc(c, f.centre, radius))?;
         }
-        let rocks = self.scene.model.rock_field();
-        let s = &self.scene.surface;
         for (k, tip) in pose.tips.iter().enumerate() {
-            let depth = self
-                .scene
-                .trace
-                .value(&format!("leg{k}_penetration_m"), pose.t_s);
-            if !(tip.is_finite() && depth > 0.0) {
-                continue;
-            }
-            let terrain = self.scene.model.terrain.as_ref();
-            if rocks
-                .as_ref()
-                .is_some_and(|f| s.contact_at(terrain, Some(f), *tip, s.normal.dot(*tip)).2)
-            {
+            if !(tip.is_finite() && self.scene.sinkage_m(k, pose.t_s) > 0.0) {
                 continue;
             }
             sunk[k] = true;

@@ -24,6 +24,35 @@ impl Scene {
         self.model.soil.is_some()
     }
 
+    /// How deep the footpad of `leg` is sunk in the soil at `t`, m: its penetration below
+    /// the surface, 0 where it is above it, on a rock (rocks do not give way) or off
+    /// regolith.
+    #[must_use]
+    pub fn sinkage_m(&self, leg: usize, t: f64) -> f64 {
+        if !self.on_regolith() {
+            return 0.0;
+        }
+        let tr = &self.trace;
+        let depth = tr.value(&format!("leg{leg}_penetration_m"), t);
+        if depth.is_nan() || depth <= 0.0 {
+            return 0.0;
+        }
+        let tip = ["x", "y", "z"].map(|a| tr.value(&format!("leg{leg}_tip_{a}_m"), t));
+        let tip = DVec3::from_array(tip);
+        if self.on_rock(tip) { 0.0 } else { depth }
+    }
+
+    /// Whether a footpad whose lowest point is at `tip` meets a rock deeper than the ground.
+    fn on_rock(&self, tip: DVec3) -> bool {
+        let s = &self.surface;
+        tip.is_finite()
+            && self.model.rock_field().is_some_and(|field| {
+                let terrain = self.model.terrain.as_ref();
+                s.contact_at(terrain, Some(&field), tip, s.normal.dot(tip))
+                    .2
+            })
+    }
+
     /// The footprints of the trace, in order of lift-off: for every leg, every run of rows
     /// in which its footpad is below the surface (`leg{k}_penetration_m > 0`) that ends with
     /// it above again, at the row where it was deepest; a run whose deepest point is on a
@@ -35,7 +64,6 @@ impl Scene {
         }
         let tr = &self.trace;
         let s = &self.surface;
-        let rocks = self.model.rock_field();
         let mut out = Vec::new();
         for leg in 0..tr.legs {
             let depth = tr.column(&format!("leg{leg}_penetration_m"));
@@ -57,14 +85,7 @@ impl Scene {
                     continue;
                 };
                 let p = tip(j);
-                if !p.is_finite() {
-                    continue;
-                }
-                let on_rock = rocks.as_ref().is_some_and(|field| {
-                    let terrain = self.model.terrain.as_ref();
-                    s.contact_at(terrain, Some(field), p, s.normal.dot(p)).2
-                });
-                if on_rock {
+                if !p.is_finite() || self.on_rock(p) {
                     continue;
                 }
                 let ground = s.height(self.model.terrain.as_ref(), p).0;

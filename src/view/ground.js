@@ -1,13 +1,15 @@
 // ==== the ground's rocks, footprints and sunk footpads (a page with rocks or regolith)
 // Spliced into viewer.html by view/mod.rs where the trace has them. D.rocks: [x, y, z, r]
 // per rock (the base's centre in I on the ground, the hemisphere's radius); D.footprints:
-// {leg, t (lift-off), p (centre on the ground), depth_m}; D.regolith: footpads sink.
+// {leg, t (lift-off), p (centre on the ground), depth_m}; D.regolith: footpads sink, and
+// D.sinkage_m[k][i] is leg k's sinkage at time i (0 above the ground or on a rock).
 const ROCKS = (Array.isArray(D.rocks) ? D.rocks : []).filter(Array.isArray)
   .map((r) => ({ c: vec(r), r: num(r[3]) })).filter((r) => ok3(r.c) && r.r > 0);
 const PRINTS = (Array.isArray(D.footprints) ? D.footprints : []).filter((f) => f && typeof f === 'object')
   .map((f) => ({ leg: Math.floor(num(f.leg)), t: num(f.t), p: vec(f.p), depth: num(f.depth_m) }))
   .filter((f) => ok3(f.p) && fin(f.t));
 const REGOLITH = D.regolith === true;
+const SINK = (Array.isArray(D.sinkage_m) ? D.sinkage_m : []).map((a) => (Array.isArray(a) ? a : []));
 let hoverAt = null; // the projection, pose and scale last drawn, for hover
 /** A rock's outline in I: its dome's silhouette from side to side over the top, then the
  *  near half of its base. */
@@ -43,7 +45,7 @@ function groundRocks(g, A, ox, oy, s) {
 }
 /** Leg k's footpad sinks now: its depth below the ground, or 0. */
 function sinkage(k) {
-  const d = at(`leg${k}_penetration_m`, idx);
+  const d = num((SINK[k] || [])[idx]);
   return REGOLITH && d > 0 ? d : 0;
 }
 /** The rocks near the lander again (in depth order with its parts), the footprints left by
@@ -97,9 +99,10 @@ function hoverText(x, y) {
   for (let k = 0; k < legs.length; k++) {
     const foot = footAt(k, ps);
     if (!foot || !near(foot, padR)) continue;
-    const d = at(`leg${k}_penetration_m`, idx);
+    const d = at(`leg${k}_penetration_m`, idx), sunk = sinkage(k);
+    if (sunk > 0) return `footpad ${k}: sunk ${cm(sunk)}`;
     if (!fin(d)) return `footpad ${k}`;
-    return d > 0 ? `footpad ${k}: ${REGOLITH ? 'sunk' : 'in contact'} ${cm(d)}` : `footpad ${k}: ${cm(-d)} above the ground`;
+    return d > 0 ? `footpad ${k}: in contact, ${cm(d)} deep` : `footpad ${k}: ${cm(-d)} above the ground`;
   }
   for (const f of PRINTS) if (f.t <= T[idx] && near(f.p, padR)) return `footprint of footpad ${f.leg}: ${cm(f.depth)} deep`;
   let best = null;

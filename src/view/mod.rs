@@ -165,7 +165,7 @@ fn trace_json(scene: &Scene) -> (String, usize) {
     let ground = sketch_and_ground(&mut o, scene);
     o.push_str("},\"time\":");
     numbers(&mut o, times.iter().copied());
-    rocks_and_footprints(&mut o, scene, &ground);
+    rocks_and_footprints(&mut o, scene, &ground, &times);
 
     series(&mut o, scene, &times, resampled);
     charts(&mut o, scene);
@@ -244,10 +244,11 @@ fn sketch_and_ground(o: &mut String, scene: &Scene) -> Ground {
 }
 
 /// With rocks, the page's key `rocks`: `[x, y, z, radius]` of each rock on the patch
-/// `ground` (its base's centre in I); on regolith, `regolith` and the `footprints`, each
+/// `ground` (its base's centre in I); on regolith, `regolith`, each leg's sinkage at
+/// `times` (`sinkage_m`: 0 above the ground or on a rock) and the `footprints`, each
 /// `{leg, t, p, depth_m}` (lift-off time, centre on the ground, deepest sinkage). Nothing
 /// on the elastic plane without rocks (its page stays as it was).
-fn rocks_and_footprints(o: &mut String, scene: &Scene, ground: &Ground) {
+fn rocks_and_footprints(o: &mut String, scene: &Scene, ground: &Ground, times: &[f64]) {
     if scene.model.rocks.is_some() {
         o.push_str(",\"rocks\":[");
         for (k, r) in scene.rocks(ground).iter().enumerate() {
@@ -259,7 +260,14 @@ fn rocks_and_footprints(o: &mut String, scene: &Scene, ground: &Ground) {
         o.push(']');
     }
     if scene.on_regolith() {
-        o.push_str(",\"regolith\":true,\"footprints\":[");
+        o.push_str(",\"regolith\":true,\"sinkage_m\":[");
+        for leg in 0..scene.trace.legs {
+            if leg > 0 {
+                o.push(',');
+            }
+            numbers(o, times.iter().map(|t| scene.sinkage_m(leg, *t)));
+        }
+        o.push_str("],\"footprints\":[");
         for (k, f) in scene.footprints().iter().enumerate() {
             if k > 0 {
                 o.push(',');
