@@ -62,7 +62,7 @@ fn trace(dir: &TempDir, name: &str, scenario: &str) -> (String, f64, f64) {
 
 /// The frames of a GIF as the viewer shows them (each drawn over the ones before), RGBA,
 /// with their delays in 1/100 s; and the picture's size.
-fn frames(path: &Path) -> (Vec<Vec<u8>>, Vec<u16>, (usize, usize)) {
+pub(crate) fn frames(path: &Path) -> (Vec<Vec<u8>>, Vec<u16>, (usize, usize)) {
     let mut options = gif::DecodeOptions::new();
     options.set_color_output(gif::ColorOutput::RGBA);
     let mut decoder = options
@@ -346,7 +346,7 @@ fn bad_input_exits_2_with_a_message_and_leaves_no_file() {
 /// Chromium, if it is here; when it is not, the test is skipped with a note (CI installs
 /// Debian's `chromium` and sets `TOUCHDOWN_REQUIRE_CHROMIUM=1`, which makes a missing
 /// browser a failure).
-fn chromium(test: &str) -> Option<String> {
+pub(crate) fn chromium(test: &str) -> Option<String> {
     for name in ["chromium", "chromium-browser", "google-chrome"] {
         if Command::new(name)
             .arg("--version")

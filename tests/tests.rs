@@ -13,6 +13,7 @@ mod envelope;
 mod exceedance;
 mod flown;
 mod ground;
+mod ground_pictures;
 mod hostile_files;
 mod initial_state;
 mod inputs;

@@ -1,7 +1,7 @@
 //! The orthographic view of the frames: the camera's axes and scale, still or following
 //! the CG in glides, and where a point of I falls in the picture.
 
-use crate::scene::{Ground, Scene};
+use crate::scene::{Footprint, Ground, RockShape, Scene};
 use glam::DVec3;
 
 /// Where the camera looks: the point at the picture's centre (the view's axes and scale
@@ -36,6 +36,10 @@ pub(super) struct View<'a> {
     pub(super) path: Vec<(f64, DVec3)>,
     /// Unit direction towards the light, in I.
     pub(super) light: DVec3,
+    /// The rocks on the ground patch that show at this scale.
+    pub(super) rocks: Vec<RockShape>,
+    /// The footprints on regolith, in order of lift-off.
+    pub(super) footprints: Vec<Footprint>,
 }
 
 /// Camera elevation above the horizontal, deg, and its azimuth from the downhill
@@ -94,7 +98,7 @@ impl<'a> View<'a> {
         let rough = scene.model.terrain.is_some();
         let ground = scene.ground(2.5 * reach_m, if rough { 0.1 } else { 0.5 }, 60_000);
         let light = (0.35 * right + 0.6 * back + 0.9 * DVec3::Z).normalize();
-        View {
+        let mut view = View {
             scene,
             right,
             up,
@@ -106,7 +110,11 @@ impl<'a> View<'a> {
             ground,
             path,
             light,
-        }
+            rocks: Vec::new(),
+            footprints: scene.footprints(),
+        };
+        view.rocks = view.visible_rocks();
+        view
     }
 
     /// The camera of the first frame.

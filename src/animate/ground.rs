@@ -1,5 +1,5 @@
 //! The background of a frame: the ground patch shaded face by face, its grid of whole
-//! metres and the slab's sides that face the viewer.
+//! metres, its rocks and the slab's sides that face the viewer.
 
 use super::camera::{Camera, View};
 use super::palette::{BACKGROUND, GROUND, shade};
@@ -65,6 +65,7 @@ impl View<'_> {
             root.draw(&PathElement::new(pts, line.stroke_width(1)))
                 .map_err(drawing)?;
         }
+        self.draw_rocks(&root, c)?;
         // The patch's edges that face the viewer, as a slab's sides hanging 0.3 m down.
         let (nu, nv) = (g.nu, g.nv);
         let edges: [(Vec<(usize, usize)>, DVec3); 4] = [

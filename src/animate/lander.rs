@@ -28,9 +28,11 @@ impl View<'_> {
         self.draw_shadow(&root, c, pose)?;
         self.draw_trail(&root, c, pose)?;
 
-        // The lander's parts, far to near.
+        // The lander's parts (and the rocks beside it), far to near.
         let mut parts = self.body_faces(c, pose);
-        self.leg_parts(c, pose, &mut parts);
+        let sunk = self.draw_sinkage(&root, c, pose, &mut parts)?;
+        self.near_rocks(c, pose, &mut parts);
+        self.leg_parts(c, pose, &sunk, &mut parts);
         self.plumes(c, pose, &mut parts);
         parts.sort_by(|a, b| a.0.total_cmp(&b.0));
         for (_, part) in parts {
@@ -43,13 +45,13 @@ impl View<'_> {
     }
 
     /// `p` moved along the normal onto the surface.
-    fn on_plane(&self, p: DVec3) -> DVec3 {
+    pub(super) fn on_plane(&self, p: DVec3) -> DVec3 {
         let n = self.scene.surface.normal;
         p - n * n.dot(p) + n * self.ground_height(p)
     }
 
     /// A disc of `radius` around `centre` in the surface plane, as 14 points in the picture.
-    fn disc(&self, c: Camera, centre: DVec3, radius: f64) -> Vec<(f64, f64, f64)> {
+    pub(super) fn disc(&self, c: Camera, centre: DVec3, radius: f64) -> Vec<(f64, f64, f64)> {
         let (u, v) = (self.scene.surface.tangent_u, self.scene.surface.tangent_v);
         (0..14)
             .map(|i| {
@@ -138,8 +140,9 @@ impl View<'_> {
         parts
     }
 
-    /// Each leg's struts, damper piston, footpad and contact-force arrow, onto `parts`.
-    fn leg_parts(&self, c: Camera, pose: &Pose, parts: &mut Vec<(f64, Part)>) {
+    /// Each leg's struts, damper piston, footpad and contact-force arrow, onto `parts`; a
+    /// `sunk` leg's piston ends at the surface, and its footpad is `draw_sinkage`'s.
+    fn leg_parts(&self, c: Camera, pose: &Pose, sunk: &[bool], parts: &mut Vec<(f64, Part)>) {
         let sk = &self.scene.sketch;
         let n = self.scene.surface.normal;
         let px = self.scale;
@@ -159,14 +162,35 @@ impl View<'_> {
                 )
             };
             parts.push(seg(hip, mount, STRUT, 0.012 * px));
-            parts.push(seg(hip, tube_end, STRUT, 0.03 * px));
-            parts.push(seg(tube_end, tip, shade(PISTON, 1.0), 0.016 * px));
-            // The footpad: a disc in the surface plane.
-            let depth = self.project(c, tip).2;
-            parts.push((
-                depth,
-                Part::Face(self.disc(c, tip, sk.footpad_radius_m), FOOTPAD),
-            ));
+            if sunk.get(k) == Some(&true) {
+                // The strut and piston down to where they enter the ground.
+                let above = |p: DVec3| n.dot(p) - self.ground_height(p);
+                let clipped = |a: DVec3, b: DVec3| {
+                    let (ha, hb) = (above(a), above(b));
+                    (ha > 0.0).then(|| {
+                        if hb < 0.0 {
+                            a + (b - a) * (ha / (ha - hb))
+                        } else {
+                            b
+                        }
+                    })
+                };
+                if let Some(end) = clipped(hip, tube_end) {
+                    parts.push(seg(hip, end, STRUT, 0.03 * px));
+                }
+                if let Some(end) = clipped(tube_end, tip) {
+                    parts.push(seg(tube_end, end, shade(PISTON, 1.0), 0.016 * px));
+                }
+            } else {
+                parts.push(seg(hip, tube_end, STRUT, 0.03 * px));
+                parts.push(seg(tube_end, tip, shade(PISTON, 1.0), 0.016 * px));
+                // The footpad: a disc in the surface plane.
+                let depth = self.project(c, tip).2;
+                parts.push((
+                    depth,
+                    Part::Face(self.disc(c, tip, sk.footpad_radius_m), FOOTPAD),
+                ));
+            }
             // The contact force along the normal, on a logarithmic length scale: the
             // weight's share of a leg at rest draws 8 cm, 100 times it 55 cm.
             let f = pose.normal_n[k];

@@ -10,7 +10,8 @@
 
 //!
 //! `timing.rs` the options and the frames' clock; `render.rs` the driver; `camera.rs` the
-//! view; `ground.rs`, `lander.rs`, `parts.rs` and `captions.rs` what a frame shows;
+//! view; `ground.rs`, `rocks.rs`, `lander.rs`, `parts.rs` and `captions.rs` what a frame
+//! shows (`rocks.rs` also the footprints and sunk footpads on regolith);
 //! `palette.rs` and `encode.rs` the GIF's colours and frames.
 
 mod camera;
@@ -21,6 +22,7 @@ mod lander;
 mod palette;
 mod parts;
 mod render;
+mod rocks;
 mod timing;
 
 pub use render::{Rendered, animate};

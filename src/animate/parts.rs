@@ -1,5 +1,5 @@
 //! The parts of the lander as drawn (faces, segments, arrows, plumes in pixels with their
-//! depth), and the convex hull of its shadow.
+//! depth, and the rocks beside them), and the convex hull of its shadow.
 
 use super::palette::{PLUME, shade};
 use crate::plot::canvas::{Area, drawing};
@@ -12,6 +12,8 @@ pub(super) enum Part {
     Arrow((f64, f64, f64), (f64, f64, f64), RGBColor),
     /// From the nozzle to the plume's end, with its half-width there in pixels.
     Plume((f64, f64, f64), (f64, f64, f64), f64),
+    /// A rock: its facets with their shades, then its outline in a colour.
+    Rock(Vec<(Vec<(i32, i32)>, RGBColor)>, Vec<(i32, i32)>, RGBColor),
 }
 
 impl Part {
@@ -56,6 +58,14 @@ impl Part {
                     root.draw(&Polygon::new(tri, colour.filled()))
                         .map_err(drawing)?;
                 }
+            }
+            Part::Rock(facets, outline, edge) => {
+                for (pts, colour) in facets {
+                    root.draw(&Polygon::new(pts.clone(), colour.filled()))
+                        .map_err(drawing)?;
+                }
+                root.draw(&PathElement::new(outline.clone(), edge.stroke_width(1)))
+                    .map_err(drawing)?;
             }
             Part::Plume(a, b, half_width) => {
                 let (dx, dy) = (b.0 - a.0, b.1 - a.1);

@@ -1,6 +1,7 @@
 //! The lander's shape in B as a sketch: the model's lander is a rigid body with point
 //! footpads, so the body (an octagonal prism, the thesis's lander), the struts' length and
-//! the footpad discs are proportions of the leg geometry.
+//! the footpad discs are proportions of the leg geometry (on regolith and among rocks, the
+//! footpads are the model's own).
 
 use crate::reference::Model;
 use glam::DVec3;
@@ -108,7 +109,13 @@ impl Sketch {
             bottom,
             top,
             legs,
-            footpad_radius_m: 0.12 * radius,
+            footpad_radius_m: if model.soil.is_some() || model.rocks.is_some() {
+                // Where the footpad's size is physics (the sole that sinks, the sphere
+                // that meets rocks), the footpad drawn is the model's.
+                model.pad_radius_m()
+            } else {
+                0.12 * radius
+            },
             thrusters,
         }
     }

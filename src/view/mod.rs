@@ -6,9 +6,14 @@
 //! opens from a mail attachment or a folder with no network. A long trace is resampled to
 //! `MAX_TIMES` times; the forces and thrusts keep their peak over each interval, so no
 //! impact or firing in the trace's rows falls between two of them.
+//!
+//! With rocks or on regolith, `ground.js` is spliced into the page too: the rocks as shaded
+//! hemispheres, the footprints, each sunk footpad veiled by the ground under its hole, and
+//! under the pointer a rock's radius or a footpad's sinkage. A page without them is the
+//! template alone, byte for byte as before.
 
 use crate::output::AtomicFile;
-use crate::scene::Scene;
+use crate::scene::{Ground, Scene};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
@@ -16,6 +21,18 @@ use std::path::Path;
 /// The page, with `PLACEHOLDER` where the trace goes.
 const TEMPLATE: &str = include_str!("viewer.html");
 const PLACEHOLDER: &str = "\"__TOUCHDOWN_TRACE_JSON__\"";
+
+/// The page's drawing of rocks, footprints and sunk footpads, and where it goes into the
+/// page: a page without rocks or regolith is `TEMPLATE` alone, as before them.
+const GROUND_JS: &str = include_str!("ground.js");
+/// `GROUND_JS` goes before this line of `TEMPLATE` (at the script's top level)...
+const GROUND_JS_BEFORE: &str = "// ==== 3D view\n";
+/// ...the rocks onto the cached ground layer at the end of `renderGround`...
+const ROCKS_LAYER_AT: &str = "}\nfunction drawGround(ctx) {";
+const ROCKS_LAYER_CALL: &str = "  groundRocks(g, A, ox, oy, s);\n";
+/// ...and the rocks near the lander, footprints and holes among the lander's parts.
+const GROUND_PRIMS_AT: &str = "  // Painter's algorithm: far to near.\n  prims.sort(";
+const GROUND_PRIMS_CALL: &str = "  groundPrims(prims, poly, P, ps, s);\n";
 
 /// Most times a page holds.
 pub const MAX_TIMES: usize = 4000;
@@ -42,7 +59,12 @@ pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
     crate::output::check_output_path(out)?;
     let scene = Scene::read(trace)?;
     let (json, times) = trace_json(&scene);
-    let page = TEMPLATE.replacen(PLACEHOLDER, &json.replace("</", "<\\/"), 1);
+    let template = if scene.model.rocks.is_some() || scene.on_regolith() {
+        with_ground(TEMPLATE)
+    } else {
+        TEMPLATE.to_string()
+    };
+    let page = template.replacen(PLACEHOLDER, &json.replace("</", "<\\/"), 1);
     let (file, mut sink) = AtomicFile::create(out)?;
     sink.write_all(page.as_bytes())
         .and_then(|()| sink.flush())
@@ -54,6 +76,16 @@ pub fn view(trace: &Path, out: &Path) -> anyhow::Result<Written> {
         bytes: page.len() as u64,
         every: scene.trace.every,
     })
+}
+
+/// `template` with the drawing of rocks, footprints and sunk footpads spliced in (each
+/// place found once in `TEMPLATE`: a unit test checks).
+fn with_ground(template: &str) -> String {
+    let at = |place: &str, what: &str| format!("{what}{place}");
+    template
+        .replacen(GROUND_JS_BEFORE, &at(GROUND_JS_BEFORE, GROUND_JS), 1)
+        .replacen(ROCKS_LAYER_AT, &at(ROCKS_LAYER_AT, ROCKS_LAYER_CALL), 1)
+        .replacen(GROUND_PRIMS_AT, &at(GROUND_PRIMS_AT, GROUND_PRIMS_CALL), 1)
 }
 
 /// A number as JSON: f32 precision (the page draws it), `null` when not finite.
@@ -130,9 +162,10 @@ fn trace_json(scene: &Scene) -> (String, usize) {
     num(&mut o, scene.trace.downhill_azimuth_deg());
     o.push_str(",\"normal\":");
     vec3(&mut o, scene.surface.normal);
-    sketch_and_ground(&mut o, scene);
+    let ground = sketch_and_ground(&mut o, scene);
     o.push_str("},\"time\":");
     numbers(&mut o, times.iter().copied());
+    rocks_and_footprints(&mut o, scene, &ground, &times);
 
     series(&mut o, scene, &times, resampled);
     charts(&mut o, scene);
@@ -141,8 +174,8 @@ fn trace_json(scene: &Scene) -> (String, usize) {
 }
 
 /// The lander's sketch (body, legs, footpads, thrusters) and the ground patch under its
-/// path, as the page's keys `body` to `ground`.
-fn sketch_and_ground(o: &mut String, scene: &Scene) {
+/// path, as the page's keys `body` to `ground`; returns the patch.
+fn sketch_and_ground(o: &mut String, scene: &Scene) -> Ground {
     let sk = &scene.sketch;
     o.push_str(",\"body\":{\"bottom\":[");
     for (k, p) in sk.bottom.iter().enumerate() {
@@ -206,6 +239,48 @@ fn sketch_and_ground(o: &mut String, scene: &Scene) {
     match &g.heights {
         Some(h) => numbers(o, h.iter().copied()),
         None => o.push_str("null"),
+    }
+    g
+}
+
+/// With rocks, the page's key `rocks`: `[x, y, z, radius]` of each rock on the patch
+/// `ground` (its base's centre in I); on regolith, `regolith`, each leg's sinkage at
+/// `times` (`sinkage_m`: 0 above the ground or on a rock) and the `footprints`, each
+/// `{leg, t, p, depth_m}` (lift-off time, centre on the ground, deepest sinkage). Nothing
+/// on the elastic plane without rocks (its page stays as it was).
+fn rocks_and_footprints(o: &mut String, scene: &Scene, ground: &Ground, times: &[f64]) {
+    if scene.model.rocks.is_some() {
+        o.push_str(",\"rocks\":[");
+        for (k, r) in scene.rocks(ground).iter().enumerate() {
+            if k > 0 {
+                o.push(',');
+            }
+            numbers(o, r.centre.to_array().into_iter().chain([r.radius_m]));
+        }
+        o.push(']');
+    }
+    if scene.on_regolith() {
+        o.push_str(",\"regolith\":true,\"sinkage_m\":[");
+        for leg in 0..scene.trace.legs {
+            if leg > 0 {
+                o.push(',');
+            }
+            numbers(o, times.iter().map(|t| scene.sinkage_m(leg, *t)));
+        }
+        o.push_str("],\"footprints\":[");
+        for (k, f) in scene.footprints().iter().enumerate() {
+            if k > 0 {
+                o.push(',');
+            }
+            let _ = write!(o, "{{\"leg\":{},\"t\":", f.leg);
+            num(o, f.lifted_s);
+            o.push_str(",\"p\":");
+            vec3(o, f.centre);
+            o.push_str(",\"depth_m\":");
+            num(o, f.depth_m);
+            o.push('}');
+        }
+        o.push(']');
     }
 }
 
@@ -347,5 +422,22 @@ fn charts(o: &mut String, scene: &Scene) {
             format!("thrust of thrusters {first}-{last} of 0-{} (N)", n - 1)
         };
         chart(o, &title, &lines);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ground_s_drawing_goes_into_the_page_at_each_of_its_places_once() {
+        for place in [GROUND_JS_BEFORE, ROCKS_LAYER_AT, GROUND_PRIMS_AT] {
+            assert_eq!(TEMPLATE.matches(place).count(), 1, "{place:?}");
+        }
+        let page = with_ground(TEMPLATE);
+        assert!(page.contains(&format!("{GROUND_JS}{GROUND_JS_BEFORE}")));
+        assert!(page.contains(&format!("{ROCKS_LAYER_CALL}{ROCKS_LAYER_AT}")));
+        assert!(page.contains(&format!("{GROUND_PRIMS_CALL}{GROUND_PRIMS_AT}")));
+        assert_eq!(page.matches(PLACEHOLDER).count(), 1);
     }
 }

@@ -6,9 +6,10 @@ usage: python3 browser_view.py CHROMIUM HTML_FILE OUT_DIR
 Starts Chromium, drives the page over the Chrome DevTools Protocol (a WebSocket client
 written here on `socket`), and checks: no console errors; the 3D canvas is drawn; moving the
 time slider with the mouse changes the picture and the charts' cursor; dragging on the
-canvas orbits and the wheel zooms. Saves OUT_DIR/view-before.png and view-after.png.
-Prints one line per check; exits 0 when all pass, 1 when one fails, 3 when Chromium cannot
-start. Every wait is bounded; Chromium is always killed and its profile removed.
+canvas orbits and the wheel zooms; on a page with rocks or regolith, that the pointer over
+the view names a rock (its radius) or a sunk footpad (its sinkage). Saves
+OUT_DIR/view-before.png and view-after.png. Prints one line per check; exits 0 when all
+pass, 1 when one fails, 3 when Chromium cannot start. Every wait is bounded; Chromium is always killed and its profile removed.
 """
 import base64, hashlib, http.client, json, os, queue, re, shutil, signal, socket, struct
 import subprocess, sys, tempfile, threading, time, urllib.parse
@@ -329,6 +330,28 @@ def run_checks(page, html, out_dir):
     mouse("mouseWheel", cx, cy, deltaX=0, deltaY=-240)
     zoom = settled()
     check(zoom["hash"] != orbit["hash"], f"wheel zoom changed the 3D view (hash {zoom['hash']:08x})")
+
+    # Hover, on a page with rocks or regolith: sweep the pointer over the view (no button)
+    # and collect what the page names under it.
+    kinds = page.evaluate("(function () { const d = JSON.parse(document.getElementById("
+                          "'trace-data').textContent); return [Array.isArray(d.rocks), "
+                          "d.regolith === true]; })()")
+    if any(kinds):
+        box = page.evaluate(BOX % "view3d")
+        seen = set()
+        for j in range(1, 24):
+            for i in range(1, 32):
+                mouse("mouseMoved", box["x"] + box["w"] * i / 32, box["y"] + box["h"] * j / 24)
+                text = page.evaluate("window.touchdownHover || ''")
+                if text:
+                    seen.add(text)
+        named = sorted(seen)
+        if kinds[0]:
+            check(any(t.startswith("rock: radius") for t in named),
+                  f"hover names rocks ({len(named)} texts, e.g. {named[:3]})")
+        if kinds[1]:
+            check(any(" sunk " in t for t in named),
+                  f"hover names a sunk footpad ({[t for t in named if 'footpad' in t][:4]})")
 
     repaint()
     check(not page.errors, "no console errors" if not page.errors else
