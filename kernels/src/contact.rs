@@ -44,13 +44,12 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
 ) -> (Vec3<L>, L, L::Mask) {
     let zero = L::splat(0.0);
     let normal_velocity = normal.dot(tip_velocity);
-    let touches_down = contact & !leg.anchored;
     let mut normal_n = match (REGOLITH, &p.soil) {
         (true, Some(s)) => {
             // The soil's push in place of the spring (a touchdown away from the footprint
             // first leaves it for virgin soil); a footpad on a rock meets the spring.
             let on_soil = contact & !on_rock;
-            let soil_touches_down = touches_down & !on_rock;
+            let soil_touches_down = contact & !leg.anchored & !on_rock;
             if soil_touches_down.to_bitmask() != 0 {
                 regolith::footprint(
                     s,
@@ -82,6 +81,7 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
 
     // As the reference's `if !leg.anchored`: lanes touching down anchor at the footpad
     // (rare, so the block only writes the anchors when one does).
+    let touches_down = contact & !leg.anchored;
     if touches_down.to_bitmask() != 0 {
         leg.anchor_m = Vec3::select(touches_down, tip, leg.anchor_m);
     }
