@@ -147,50 +147,6 @@ const BAD_INPUTS: &[BadInput] = &[
         ],
     ),
     bad_scenario(
-        "regolith table on the elastic plane",
-        "[surface.regolith]\nbekker_n = 1.1\n",
-        &[
-            "`surface.regolith`",
-            "no [surface.regolith] table unless surface.kind = \"regolith\"",
-        ],
-    ),
-    bad_scenario(
-        "unknown surface kind",
-        "[surface]\nkind = \"sand\"\n",
-        &["`surface.kind`", "one of \"elastic\", \"regolith\""],
-    ),
-    bad_scenario(
-        "misspelt regolith key",
-        "[surface]\nkind = \"regolith\"\n[surface.regolith]\nbekker_kphi = 1.0e5\n",
-        &[
-            "`surface.regolith.bekker_kphi` is unknown",
-            "did you mean `bekker_k_phi`?",
-        ],
-    ),
-    bad_scenario(
-        "regolith exponent of 0",
-        "[surface]\nkind = \"regolith\"\n[surface.regolith]\nbekker_n = 0.0\n",
-        &["`surface.regolith.bekker_n`", "greater than 0"],
-    ),
-    bad_scenario(
-        "regolith friction angle of 90 deg",
-        "[surface]\nkind = \"regolith\"\n[surface.regolith]\nfriction_angle_deg = { dist = \"uniform\", min = 30.0, max = 90.0 }\n",
-        &[
-            "`surface.regolith.friction_angle_deg`",
-            "an angle below 90 deg",
-        ],
-    ),
-    bad_scenario(
-        "regolith that bears nothing",
-        "[surface]\nkind = \"regolith\"\n[surface.regolith]\nbekker_k_c = 0.0\nbekker_k_phi = 0.0\n",
-        &["`surface.regolith.bekker_k_phi`", "a soil that bears"],
-    ),
-    bad_scenario(
-        "footpad area of 0",
-        "[lander]\nfootpad_area_m2 = 0.0\n",
-        &["`lander.footpad_area_m2`", "greater than 0"],
-    ),
-    bad_scenario(
         "unknown key in a distribution",
         "[inputs]\nslope_deg = { dist = \"uniform\", min = 0, max = 10, mode = 3 }\n",
         &["`inputs.slope_deg.mode` is unknown"],

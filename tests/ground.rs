@@ -2,7 +2,7 @@
 //! writes each leg's footprint and the energy the soil kept, and the soil's drawn values;
 //! one on the elastic plane writes none of them; a sample's sweep row is its reference run.
 
-use crate::common::{TempDir, arrow_column, touchdown};
+use crate::common::{BadInput, TempDir, arrow_column, bad_scenario, check_bad_input, touchdown};
 use touchdown::reference::{self, Model};
 use touchdown::scenario::Scenario;
 
@@ -133,4 +133,61 @@ fn a_regolith_trace_prints_the_footprints_of_its_sweep_row() {
     }
     let elastic = touchdown(dir.path(), &["trace", "--sample", "5", "--out", "e.arrow"]);
     assert!(!elastic.stdout.contains("footprint"), "{elastic}");
+}
+
+/// Bad grounds: each refused with exit 2, naming the key and what it allows.
+const BAD_GROUNDS: &[BadInput] = &[
+    bad_scenario(
+        "regolith table on the elastic plane",
+        "[surface.regolith]\nbekker_n = 1.1\n",
+        &[
+            "`surface.regolith`",
+            "no [surface.regolith] table unless surface.kind = \"regolith\"",
+        ],
+    ),
+    bad_scenario(
+        "unknown surface kind",
+        "[surface]\nkind = \"sand\"\n",
+        &["`surface.kind`", "one of \"elastic\", \"regolith\""],
+    ),
+    bad_scenario(
+        "misspelt regolith key",
+        "[surface]\nkind = \"regolith\"\n[surface.regolith]\nbekker_kphi = 1.0e5\n",
+        &[
+            "`surface.regolith.bekker_kphi` is unknown",
+            "did you mean `bekker_k_phi`?",
+        ],
+    ),
+    bad_scenario(
+        "regolith exponent of 0",
+        "[surface]\nkind = \"regolith\"\n[surface.regolith]\nbekker_n = 0.0\n",
+        &["`surface.regolith.bekker_n`", "greater than 0"],
+    ),
+    bad_scenario(
+        "regolith friction angle of 90 deg",
+        "[surface]\nkind = \"regolith\"\n[surface.regolith]\nfriction_angle_deg = { dist = \"uniform\", min = 30.0, max = 90.0 }\n",
+        &[
+            "`surface.regolith.friction_angle_deg`",
+            "an angle below 90 deg",
+        ],
+    ),
+    bad_scenario(
+        "regolith that bears nothing",
+        "[surface]\nkind = \"regolith\"\n[surface.regolith]\nbekker_k_c = 0.0\nbekker_k_phi = 0.0\n",
+        &["`surface.regolith.bekker_k_phi`", "a soil that bears"],
+    ),
+    bad_scenario(
+        "footpad area of 0",
+        "[lander]\nfootpad_area_m2 = 0.0\n",
+        &["`lander.footpad_area_m2`", "greater than 0"],
+    ),
+];
+
+#[test]
+fn bad_ground_is_refused_with_a_message_naming_the_key() {
+    let failures: Vec<String> = BAD_GROUNDS
+        .iter()
+        .flat_map(|case| check_bad_input("sweep", case, &["samples"]))
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
