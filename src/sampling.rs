@@ -95,16 +95,13 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
         };
     }
     let rough = &scenario.surface.roughness;
-    let (terrain_tile, terrain_offset_m) = if scenario.rms_height_max_m() > 0.0 {
-        let tile = (stream(seed, "terrain_tile").next_u64() % rough.tiles as u64) as u32;
-        let offset = [
-            rough.tile_size_m * uniform01(&mut stream(seed, "terrain_offset_u_m")),
-            rough.tile_size_m * uniform01(&mut stream(seed, "terrain_offset_v_m")),
-        ];
-        (tile, offset)
-    } else {
-        (0, [0.0, 0.0])
-    };
+    let (terrain_tile, terrain_offset_m) = tile_draw(
+        seed,
+        scenario.rms_height_max_m() > 0.0,
+        ["terrain_tile", "terrain_offset_u_m", "terrain_offset_v_m"],
+        rough.tiles,
+        rough.tile_size_m,
+    );
     let (terrain_tile, terrain_offset_m) = match row {
         Some(r) => (
             r.terrain_tile.unwrap_or(terrain_tile),
@@ -114,16 +111,13 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
     };
     // The rock tile and offset, from streams of their own (no table gives them).
     let rocks = &scenario.surface.rocks;
-    let (rock_tile, rock_offset_m) = if scenario.rock_abundance_max() > 0.0 {
-        let tile = (stream(seed, "rock_tile").next_u64() % rocks.tiles as u64) as u32;
-        let offset = [
-            rocks.tile_size_m * uniform01(&mut stream(seed, "rock_offset_u_m")),
-            rocks.tile_size_m * uniform01(&mut stream(seed, "rock_offset_v_m")),
-        ];
-        (tile, offset)
-    } else {
-        (0, [0.0, 0.0])
-    };
+    let (rock_tile, rock_offset_m) = tile_draw(
+        seed,
+        scenario.rock_abundance_max() > 0.0,
+        ["rock_tile", "rock_offset_u_m", "rock_offset_v_m"],
+        rocks.tiles,
+        rocks.tile_size_m,
+    );
     let mut s = Sample {
         index,
         seed,
@@ -138,6 +132,21 @@ fn drawn(scenario: &Scenario, index: u64) -> Sample {
     };
     s.set_values(values);
     s
+}
+
+/// A tile among `tiles` and an offset on a tile of side `size_m`, each from the stream
+/// named in `names` (tile, offset along u, along v); tile 0 at no offset where `on` is
+/// false (no such surface: nothing is drawn).
+fn tile_draw(seed: u64, on: bool, names: [&str; 3], tiles: usize, size_m: f64) -> (u32, [f64; 2]) {
+    if !on {
+        return (0, [0.0, 0.0]);
+    }
+    let tile = (stream(seed, names[0]).next_u64() % tiles as u64) as u32;
+    let offset = [
+        size_m * uniform01(&mut stream(seed, names[1])),
+        size_m * uniform01(&mut stream(seed, names[2])),
+    ];
+    (tile, offset)
 }
 
 #[cfg(test)]

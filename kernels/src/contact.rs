@@ -79,6 +79,13 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
             .max(zero),
     };
 
+    // The passive earth pressure on a sunk footpad's side (not on a rock), taken once for
+    // both friction caps below.
+    let passive = match (REGOLITH, &p.soil) {
+        (true, Some(s)) => on_rock.select(zero, regolith::passive_force(s, penetration)),
+        _ => zero,
+    };
+
     // As the reference's `if !leg.anchored`: lanes touching down anchor at the footpad
     // (rare, so the block only writes the anchors when one does).
     let touches_down = contact & !leg.anchored;
@@ -98,7 +105,7 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
     );
 
     if let (true, Some(h)) = (DAMPERS, &p.honeycomb) {
-        let cap = friction_cap::<L, REGOLITH>(p, normal_n, penetration, on_rock);
+        let cap = friction_cap::<L, REGOLITH>(p, normal_n, passive);
         let friction_now =
             friction * (cap / friction.length().max(cap).max(L::splat(L::MIN_POSITIVE)));
         let load_n = (normal * normal_n + friction_now).dot(strut_up);
@@ -123,7 +130,7 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
         normal_n = relieved;
     }
 
-    let cap = friction_cap::<L, REGOLITH>(p, normal_n, penetration, on_rock);
+    let cap = friction_cap::<L, REGOLITH>(p, normal_n, passive);
     // `|friction| > cap`, compared squared (both sides are >= 0): only slipping lanes need
     // the root and the division.
     let magnitude_squared = friction.length_squared();
@@ -143,19 +150,11 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
 }
 
 /// The most the friction spring may pull with: Coulomb's `mu F_N`, and on regolith the
-/// passive earth pressure on the side of the sunk footpad besides (not on a rock).
+/// passive earth pressure `passive` on the side of the sunk footpad besides (0 on a rock).
 #[inline(always)]
-fn friction_cap<L: Lane, const REGOLITH: bool>(
-    p: &Params<L>,
-    normal_n: L,
-    penetration: L,
-    on_rock: L::Mask,
-) -> L {
+fn friction_cap<L: Lane, const REGOLITH: bool>(p: &Params<L>, normal_n: L, passive: L) -> L {
     match (REGOLITH, &p.soil) {
-        (true, Some(s)) => {
-            let passive = on_rock.select(L::splat(0.0), regolith::passive_force(s, penetration));
-            p.friction_coefficient.mul_add(normal_n, passive)
-        }
+        (true, Some(_)) => p.friction_coefficient.mul_add(normal_n, passive),
         _ => p.friction_coefficient * normal_n,
     }
 }

@@ -102,6 +102,8 @@ pub fn leg_force(
         }
     };
     let mut normal_n = (spring - contact.damping_n_s_per_m * normal_velocity).max(0.0);
+    // The passive earth pressure on a sunk footpad's side, taken once for both caps below.
+    let passive = soil.map_or(0.0, |s| regolith::passive_force(s, penetration));
 
     if !leg.anchored {
         leg.anchor_m = tip;
@@ -114,7 +116,7 @@ pub fn leg_force(
         - velocity_t * contact.friction_damping_n_s_per_m;
 
     if let Some(h) = honeycomb {
-        let cap = friction_cap(contact, soil, normal_n, penetration);
+        let cap = friction_cap(contact, soil, normal_n, passive);
         let friction_now = friction * (cap / friction.length().max(cap).max(f64::MIN_POSITIVE));
         let load_n = (normal * normal_n + friction_now).dot(strut_up);
         // The normal force falls with the stroke along the contact's spring: the plane's,
@@ -134,7 +136,7 @@ pub fn leg_force(
         normal_n = relieved;
     }
 
-    let cap = friction_cap(contact, soil, normal_n, penetration);
+    let cap = friction_cap(contact, soil, normal_n, passive);
     let magnitude = friction.length();
     let slipping = magnitude > cap;
     if slipping {
@@ -151,13 +153,11 @@ pub fn leg_force(
 }
 
 /// The most the friction spring may pull with: Coulomb's `mu F_N`, and on regolith the
-/// passive earth pressure on the side of the sunk footpad besides.
+/// passive earth pressure `passive` on the side of the sunk footpad besides.
 #[inline]
-fn friction_cap(contact: &Contact, soil: Option<&Soil>, normal_n: f64, penetration: f64) -> f64 {
+fn friction_cap(contact: &Contact, soil: Option<&Soil>, normal_n: f64, passive: f64) -> f64 {
     match soil {
         None => contact.friction_coefficient * normal_n,
-        Some(s) => {
-            contact.friction_coefficient * normal_n + regolith::passive_force(s, penetration)
-        }
+        Some(_) => contact.friction_coefficient * normal_n + passive,
     }
 }
