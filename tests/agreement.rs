@@ -333,6 +333,16 @@ fn kernels_agree_with_the_reference() {
             1000,
         ),
         (
+            // Each lane in its own gravity (a landing site's, `touchdown site`), with
+            // dampers and regolith, whose cartridges and soil weight read it too.
+            "gravity drawn, dampers, regolith",
+            scenario(
+                "gravity_m_s2 = { dist = \"uniform\", min = 0.004, max = 0.06 }\n\
+                 [surface]\nkind = \"regolith\"\n[damper]\nenabled = true",
+            ),
+            600,
+        ),
+        (
             // Each lane on the terrain at its own roughness (tiles of the largest, scaled).
             "roughness drawn",
             scenario(

@@ -240,3 +240,96 @@ fn drawn_parameters_are_columns_and_bad_draws_are_refused() {
         assert!(!dir.join("bad.arrow").exists(), "{name}");
     }
 }
+
+#[test]
+fn gravity_is_drawn_per_sample_and_each_lander_falls_in_its_own() {
+    let dir = TempDir::new("gravity-drawn");
+    // A vertical fall onto a flat plane: nothing else drawn.
+    let fall = "[inputs]\nslope_deg = 0.0\nrelease_height_m = 1.0\nvelocity_error_x_m_s = 0.0\n\
+                velocity_error_y_m_s = 0.0\nvelocity_error_z_m_s = 0.0\nroll_deg = 0.0\n\
+                pitch_deg = 0.0\nrate_x_deg_s = 0.0\nrate_y_deg_s = 0.0\nrate_z_deg_s = 0.0\n";
+    dir.write(
+        "g.toml",
+        &format!("gravity_m_s2 = {{ dist = \"uniform\", min = 0.005, max = 0.05 }}\n{fall}"),
+    );
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--quiet",
+            "--scenario",
+            "g.toml",
+            "--samples",
+            "300",
+            "--out",
+            "g.arrow",
+        ],
+    );
+    assert!(dir.join("g.arrow").is_file(), "{run}");
+    let g = column(&dir.join("g.arrow"), "gravity_m_s2").expect("a gravity column");
+    let v = column(&dir.join("g.arrow"), "touchdown_normal_speed_m_s").expect("speeds");
+    assert!(g.iter().all(|x| (0.005..=0.05).contains(x)));
+    // Released 1 m above initial.clearance_m = 1 mm, each lander meets the plane at
+    // `sqrt(2 g (h + clearance))` of its own g (a tenfold range: a lane stepping in another
+    // lane's gravity would be off by up to 3x). The column is the velocity at the start of
+    // the step that touches, whose position the kick-drift integrator finds within a step
+    // of the exact fall: off by at most one 1 ms step's `g dt` either way.
+    for (i, (g, v)) in g.iter().zip(&v).enumerate() {
+        let exact = (2.0 * g * 1.001).sqrt();
+        assert!(
+            (v - exact).abs() <= g * 1e-3,
+            "sample {i}: g = {g}, v = {v}, expected {exact} within g dt"
+        );
+    }
+    // `trace` runs a sample in its drawn gravity and shows it.
+    let trace = touchdown(
+        dir.path(),
+        &[
+            "trace",
+            "--scenario",
+            "g.toml",
+            "--sample",
+            "7",
+            "--out",
+            "t.arrow",
+        ],
+    );
+    assert!(
+        trace.stdout.contains("gravity_m_s2") && trace.stdout.contains(&format!("{:.6}", g[7])),
+        "{trace}"
+    );
+
+    for (name, text, expect) in [
+        (
+            "a gravity drawn down to 0",
+            "gravity_m_s2 = { dist = \"uniform\", min = 0.0, max = 0.05 }\n",
+            vec!["`gravity_m_s2`", "a gravity greater than 0"],
+        ),
+        (
+            "a gravity drawn with a control loop",
+            "gravity_m_s2 = { dist = \"uniform\", min = 0.01, max = 0.05 }\n\
+             [control.hold_down]\nthrust_n = 2.0\nduration_s = 5.0\n",
+            vec!["`gravity_m_s2`", "control loop"],
+        ),
+    ] {
+        dir.write("bad.toml", text);
+        let run = touchdown(
+            dir.path(),
+            &[
+                "sweep",
+                "--quiet",
+                "--scenario",
+                "bad.toml",
+                "--samples",
+                "10",
+                "--out",
+                "b.arrow",
+            ],
+        );
+        assert_eq!(run.code, Some(2), "{name}: {run}");
+        for e in expect {
+            assert!(run.stderr.contains(e), "{name}: no {e:?} in {run}");
+        }
+        assert!(!dir.join("b.arrow").exists(), "{name}");
+    }
+}

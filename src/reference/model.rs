@@ -333,6 +333,7 @@ impl Model {
                 }
                 Parameter::FootpadAreaM2 => m.footpad_area_m2 = x,
                 Parameter::RockAbundance => m.rock_abundance = x,
+                Parameter::GravityMS2 => m.gravity_m_s2 = x,
                 Parameter::BekkerKC => set_soil(&mut m, |r| r.bekker_k_c = x),
                 Parameter::BekkerKPhi => set_soil(&mut m, |r| r.bekker_k_phi = x),
                 Parameter::BekkerN => set_soil(&mut m, |r| r.bekker_n = x),

@@ -4,7 +4,7 @@
 use super::control::{Control, read_control};
 use super::damper::{Damper, read_damper};
 use super::initial::{Initial, read_initial};
-use super::inputs::{Dist, Inputs, PARAMETERS, Parameter, Sampled, read_inputs};
+use super::inputs::{Dist, Inputs, PARAMETERS, Parameter, Sampled, read_inputs, read_parameter};
 use super::lander::{Geometry, Lander, read_lander};
 use super::limits::{Limits, read_limits};
 use super::outcome::{Outcome, read_outcome};
@@ -59,12 +59,12 @@ table! {
         design: Design = r.word(key, &Design::WORDS)?,
         /// Samples a sweep runs when the command line does not say.
         samples: u64 = r.integer(key, 1, i64::MAX)?,
-        /// Gravity, along -Z_I.
-        gravity_m_s2: f64 = r.non_negative(key)?,
         /// The parameters drawn per sample (`Parameter`): their distributions, `None` for
         /// those the scenario fixes. A drawn parameter's own field (`lander.mass_kg`, ...)
-        /// holds its distribution's median. Not a key: the tables below fill it.
+        /// holds its distribution's median. Not a key: the keys below fill it.
         sampled: Sampled = [None; PARAMETERS],
+        /// Gravity, along -Z_I (may be drawn per sample).
+        gravity_m_s2: f64 = read_parameter(r, key, &mut sampled)?,
         /// `[lander]`.
         lander: Lander = r.section(key, |t| read_lander(t, &mut sampled))?,
         /// `[surface]`.
@@ -113,6 +113,7 @@ impl Scenario {
             // 0 where the scenario has no rocks or no regolith: a sample compares equal
             // to itself (no NaN), and a trace of it records none of them (`uses`).
             Parameter::RockAbundance => self.surface.rocks.abundance,
+            Parameter::GravityMS2 => self.gravity_m_s2,
             p => self.surface.regolith.map_or(0.0, |r| r.parameter(p)),
         }
     }
@@ -131,6 +132,8 @@ impl Scenario {
             | Parameter::CrushStrengthPsi
             | Parameter::RmsHeightM => true,
             Parameter::RockAbundance => self.rock_abundance_max() > 0.0,
+            // Recorded where drawn: a fixed gravity is the scenario's own (its text says it).
+            Parameter::GravityMS2 => self.sampled[p as usize].is_some(),
             Parameter::FootpadAreaM2 => {
                 self.surface.regolith.is_some() || self.rock_abundance_max() > 0.0
             }

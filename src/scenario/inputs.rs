@@ -105,12 +105,13 @@ macro_rules! parameters {
                 PARAMETER_FIELDS[self as usize].0
             }
 
-            /// The scenario key, with its table.
+            /// The scenario key, with its table (none for a key at the top of the file).
             #[must_use]
             pub fn key(self) -> &'static str {
-                match self {
+                let key = match self {
                     $( Parameter::$variant => concat!($table, ".", stringify!($name)), )*
-                }
+                };
+                key.strip_prefix('.').unwrap_or(key)
             }
         }
     };
@@ -153,6 +154,9 @@ parameters! {
     /// `surface.rocks.abundance`: Golombek and Rapp's `k`, the fraction of the surface
     /// covered by rocks.
     RockAbundance = "surface.rocks".abundance ["1"] positive: false,
+    /// `gravity_m_s2`: the gravity along -Z_I (a landing site's, `touchdown site`). A fall
+    /// from `inputs.release_height_m` falls in the sample's gravity.
+    GravityMS2 = "".gravity_m_s2 ["m/s^2"] positive: false,
 }
 
 /// The built-in control laws' parameters a sample may draw (`Control::parameters`).

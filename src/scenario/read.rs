@@ -168,7 +168,11 @@ impl Scenario {
             );
         }
         if self.control.is_some() {
-            for p in [Parameter::MassKg, Parameter::CgHeightM] {
+            for p in [
+                Parameter::MassKg,
+                Parameter::CgHeightM,
+                Parameter::GravityMS2,
+            ] {
                 if self.sampled[p as usize].is_some() {
                     return refuse(
                         p,
@@ -345,10 +349,13 @@ impl Scenario {
                 ),
             ));
         }
-        if self.gravity_m_s2 <= 0.0 {
+        // A drawn gravity: its least value (the slowest fall) must be above 0 too.
+        let drawn_gravity = self.sampled[Parameter::GravityMS2 as usize];
+        let gravity = drawn_gravity.map_or(self.gravity_m_s2, |d| d.support().0);
+        if gravity <= 0.0 {
             return Err(invalid(
                 "gravity_m_s2",
-                self.gravity_m_s2.to_string(),
+                drawn_gravity.map_or_else(|| self.gravity_m_s2.to_string(), |d| d.toml()),
                 "a gravity greater than 0: without it no lander comes to rest on its legs or \
                  tips over (the default is 0.0168 m/s^2)"
                     .into(),
@@ -362,10 +369,7 @@ impl Scenario {
                 self.initial.touchdown.map_or(0.0, |t| t[0].support().1),
                 self.initial.clearance_m,
             ),
-            Start::Touchdown => (
-                (2.0 * self.gravity_m_s2 * height).sqrt(),
-                self.initial.clearance_m,
-            ),
+            Start::Touchdown => ((2.0 * gravity * height).sqrt(), self.initial.clearance_m),
             Start::Release => (0.0, height + self.initial.clearance_m),
             // Unbraked from the descent's start: a bound (the law brakes, then releases),
             // enough to refuse a run that could not land even so.
@@ -381,7 +385,7 @@ impl Scenario {
                     })
             }
         };
-        let reach_s = 2.0 * gap / (v + (v * v + 2.0 * self.gravity_m_s2 * gap).sqrt());
+        let reach_s = 2.0 * gap / (v + (v * v + 2.0 * gravity * gap).sqrt());
         if reach_s > self.simulation.t_max_s {
             return Err(invalid(
                 "simulation.t_max_s",
@@ -410,7 +414,7 @@ impl Scenario {
                              = {v} m/s"
                         ),
                     },
-                    g = self.gravity_m_s2
+                    g = gravity
                 ),
             ));
         }

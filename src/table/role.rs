@@ -80,7 +80,9 @@ pub(super) fn role(
                          strength per sample is for a single-stage cartridge",
                     ));
                 }
-                Parameter::MassKg | Parameter::CgHeightM if scenario.control.is_some() => {
+                Parameter::MassKg | Parameter::CgHeightM | Parameter::GravityMS2
+                    if scenario.control.is_some() =>
+                {
                     return Err(refuse(
                         "not drawn per sample in a scenario with a control loop (its thrust \
                          limits and descent are planned for one lander)",
