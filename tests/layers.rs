@@ -36,6 +36,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "boundary",
             "envelope",
             "exceedance",
+            "site",
         ],
     ),
     ("the sweep run", &["run"]),

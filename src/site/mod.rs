@@ -1,0 +1,117 @@
+//! `touchdown site`: where on a small body the lander can land. Each facet of a shape
+//! model has a slope and a gravity (`crate::shape`); one sweep over the range of both that
+//! the body spans gives each facet the outcome shares of the samples near its own slope and
+//! gravity (`estimate`), with 95 % intervals; the shares of the surface follow by area.
+//! docs/MODEL.md, "Landing sites".
+
+use crate::reference::Outcome;
+
+/// The outcomes whose shares each facet gets, in this order.
+pub const SHARE_OUTCOMES: [Outcome; 4] = [
+    Outcome::Stable,
+    Outcome::Tipped,
+    Outcome::Sliding,
+    Outcome::Bouncing,
+];
+
+/// The P(stable) a facet must reach to count as a landing site in `Site::safe_area_fraction`.
+pub const SAFE_P_STABLE: f64 = 0.99;
+
+/// An outcome's share on a facet, with its 95 % interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacetShare {
+    /// The share of the samples near the facet's slope and gravity.
+    pub p: f64,
+    /// The low end of its 95 % interval.
+    pub low: f64,
+    /// The high end of its 95 % interval.
+    pub high: f64,
+}
+
+/// One facet of the body: where it is, its ground and gravity, and how landings end there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SiteFacet {
+    /// The facet's number, 0-based, in the order of the shape model's file.
+    pub facet: u32,
+    /// Its centroid in the body frame, m.
+    pub centroid_m: [f64; 3],
+    /// The centroid's latitude and longitude, deg (spherical, about the body frame's z
+    /// axis; longitude 0 along +x, east positive, in (-180, 180]).
+    pub latitude_deg: f64,
+    /// See `latitude_deg`.
+    pub longitude_deg: f64,
+    /// Its outward unit normal.
+    pub normal: [f64; 3],
+    /// Its area, m^2.
+    pub area_m2: f64,
+    /// The effective gravity at the centroid (the body's attraction and the spin's
+    /// centrifugal acceleration), m/s^2, body frame.
+    pub effective_gravity_m_s2: [f64; 3],
+    /// Its magnitude, m/s^2: the gravity a lander feels there.
+    pub gravity_m_s2: f64,
+    /// The local slope: the angle between the outward normal and minus the effective
+    /// gravity, deg (above 90 where the effective gravity points off the ground).
+    pub slope_deg: f64,
+    /// The samples of the sweep that the facet's shares count.
+    pub samples: u64,
+    /// The shares of `SHARE_OUTCOMES`; `None` where the facet's slope lies outside any
+    /// slope a lander can stand on (90 deg or more) or the sweep's range.
+    pub shares: Option<[FacetShare; 4]>,
+}
+
+impl SiteFacet {
+    /// P(stable) and its interval, if the facet has shares.
+    #[must_use]
+    pub fn p_stable(&self) -> Option<FacetShare> {
+        self.shares.map(|s| s[0])
+    }
+}
+
+/// The body: its shape and the numbers it was given.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Its name (the shape file's stem).
+    pub name: String,
+    /// The shape model's vertices, m, body frame.
+    pub vertices: Vec<[f64; 3]>,
+    /// Its triangles (0-based vertex indices, counter-clockwise seen from outside), in the
+    /// order of `Site::facets`.
+    pub triangles: Vec<[u32; 3]>,
+    /// Bulk density, kg/m^3.
+    pub density_kg_m3: f64,
+    /// Rotation period, h.
+    pub spin_period_h: f64,
+    /// Spin axis, a unit vector in the body frame.
+    pub spin_axis: [f64; 3],
+    /// Mass, kg (the polyhedron's volume times the density).
+    pub mass_kg: f64,
+    /// Volume, m^3.
+    pub volume_m3: f64,
+    /// Surface area, m^2.
+    pub area_m2: f64,
+}
+
+/// A landing-site map: the body and each facet's numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Site {
+    /// The body.
+    pub body: Body,
+    /// Every facet, in the shape model's order.
+    pub facets: Vec<SiteFacet>,
+}
+
+impl Site {
+    /// The fraction of the surface (by area) where P(stable) is at least `SAFE_P_STABLE`
+    /// (facets without shares count as not safe).
+    #[must_use]
+    pub fn safe_area_fraction(&self) -> f64 {
+        let total: f64 = self.facets.iter().map(|f| f.area_m2).sum();
+        let safe: f64 = self
+            .facets
+            .iter()
+            .filter(|f| f.p_stable().is_some_and(|s| s.p >= SAFE_P_STABLE))
+            .map(|f| f.area_m2)
+            .sum();
+        if total > 0.0 { safe / total } else { 0.0 }
+    }
+}
