@@ -49,6 +49,7 @@ pub mod sampling;
 pub mod scenario;
 pub mod scene;
 pub mod sensitivity;
+pub mod shape;
 pub mod site;
 pub mod slope;
 pub mod stability;

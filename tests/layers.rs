@@ -20,7 +20,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ),
     (
         "physics",
-        &["slope", "terrain", "rocks", "control", "reference"],
+        &["slope", "terrain", "rocks", "control", "reference", "shape"],
     ),
     ("Monte Carlo engine", &["sampling", "sweep"]),
     ("files", &["output", "table"]),

@@ -34,6 +34,7 @@ mod report_json;
 mod scenario_fuzz;
 mod scenarios;
 mod sensitivity;
+mod shape;
 mod shards;
 mod struts;
 mod study;

@@ -1,0 +1,29 @@
+//! The shape model of a small body and its gravity: a Wavefront OBJ file read into a mesh
+//! (obj.rs), the mesh checked to be a closed, consistently oriented, outward-facing surface
+//! with its geometry (mesh.rs), the constant-density polyhedron's gravity in closed form
+//! (gravity.rs: Werner and Scheeres 1997), and per facet the spin's centrifugal
+//! acceleration, the effective gravity and the slope (facets.rs). docs/MODEL.md, "The shape
+//! model and its gravity".
+//!
+//! ```no_run
+//! # use touchdown::shape::*;
+//! # fn main() -> Result<(), ShapeError> {
+//! let mesh = read_obj(std::path::Path::new("itokawa.obj"), 1000.0)?.check()?;
+//! let body = Polyhedron::new(mesh, 1900.0)?;
+//! let omega = 2.0 * std::f64::consts::PI / (12.132 * 3600.0);
+//! let sites = facets(&body, [0.0, 0.0, 1.0], omega);
+//! # Ok(()) }
+//! ```
+
+mod error;
+mod facets;
+mod gravity;
+mod mesh;
+mod obj;
+mod vec3;
+
+pub use error::ShapeError;
+pub use facets::{FacetGravity, centrifugal, facet_gravity, facets, slope_deg, unit_axis};
+pub use gravity::{Field, G, Polyhedron};
+pub use mesh::{CheckedMesh, DEGENERATE_AREA, Edge, FacetGeometry, MAX_FACETS, MAX_VERTICES, Mesh};
+pub use obj::{MAX_LINE_BYTES, parse_obj, read_obj};
