@@ -36,6 +36,7 @@ mod scenarios;
 mod sensitivity;
 mod shape;
 mod shards;
+mod site;
 mod struts;
 mod study;
 mod sweep_cli;

@@ -12,6 +12,7 @@ mod print;
 pub mod report;
 pub mod scenario;
 pub mod sensitivity;
+pub mod site;
 pub mod study;
 pub mod sweep;
 pub mod trace;
@@ -71,6 +72,12 @@ pub enum Command {
     /// columns (the speeds along and towards the surface at the first contact), per slope
     /// band, with the 99 %-stable boundary of each row (PNG, CSV, Markdown on stdout).
     Envelope(envelope::EnvelopeArgs),
+    /// A landing-site map of a small body from its shape model (Wavefront OBJ): each
+    /// facet's effective gravity (the constant-density polyhedron's attraction and the
+    /// spin) and slope, and P(stable), P(tipped), ... of the lander there with 95 %
+    /// intervals, from one sweep over the body's slopes and gravities (a table, a summary,
+    /// a map picture and a 3D page).
+    Site(site::SiteArgs),
 }
 
 /// The `touchdown` program: parses the command line, runs it, prints an error and returns
@@ -117,6 +124,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::View(args) => view::run(&args),
         Command::Merge(args) => merge::run(&args),
         Command::Envelope(args) => envelope::run(&args),
+        Command::Site(args) => site::run(&args),
     }
 }
 
@@ -145,6 +153,7 @@ fn inputs_of(command: &Command) -> Vec<&std::path::Path> {
         Command::View(a) => vec![Some(&a.trace)],
         Command::Merge(a) => a.shards.iter().map(|p| Some(p.as_path())).collect(),
         Command::Envelope(a) => vec![Some(&a.sweep)],
+        Command::Site(a) => vec![Some(&a.shape), a.scenario.as_deref()],
     };
     given.into_iter().flatten().collect()
 }

@@ -11,6 +11,7 @@ mod load;
 mod memory;
 mod plan;
 mod signals;
+pub mod site;
 pub mod study;
 pub mod trace;
 mod workers;

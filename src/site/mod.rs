@@ -4,6 +4,10 @@
 //! gravity (`estimate`), with 95 % intervals; the shares of the surface follow by area.
 //! docs/MODEL.md, "Landing sites".
 
+pub mod estimate;
+pub mod summary;
+pub mod table;
+
 use crate::reference::Outcome;
 
 /// The outcomes whose shares each facet gets, in this order.
@@ -112,6 +116,7 @@ impl Site {
             .filter(|f| f.p_stable().is_some_and(|s| s.p >= SAFE_P_STABLE))
             .map(|f| f.area_m2)
             .sum();
-        if total > 0.0 { safe / total } else { 0.0 }
+        // `+ 0.0`: an empty sum is -0.0.
+        if total > 0.0 { safe / total + 0.0 } else { 0.0 }
     }
 }

@@ -1,0 +1,190 @@
+//! `touchdown site`: a landing-site map of a small body from its shape model: each facet's
+//! effective gravity and slope, and how the lander's touchdowns end there (P(stable),
+//! P(tipped), ... with 95 % intervals), as a table, a Markdown summary, a map picture and
+//! a 3D page.
+
+use super::flags::{Threads, parse_count, parse_kernel, parse_seed};
+use super::print::print_out;
+use crate::output::format::Format;
+use crate::run::KernelChoice;
+use crate::run::site::SiteSettings;
+use crate::site::estimate::Window;
+use std::path::PathBuf;
+
+/// Units of a shape model's coordinates.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Units {
+    /// Metres.
+    M,
+    /// Kilometres (as PDS shape models are given).
+    Km,
+}
+
+/// Flags of `touchdown site`.
+#[derive(clap::Args, Debug)]
+pub struct SiteArgs {
+    /// The shape model: a Wavefront OBJ file (`v` and `f` lines) of a closed surface whose
+    /// facets wind counter-clockwise seen from outside, in the body-fixed frame (origin at
+    /// the centre of mass).
+    #[arg(value_name = "SHAPE")]
+    pub shape: PathBuf,
+    /// Units of the shape file's coordinates (an OBJ file does not say).
+    #[arg(long, value_enum)]
+    pub units: Units,
+    /// Bulk density of the body, kg/m^3 (constant throughout).
+    #[arg(long, value_name = "KG_M3", value_parser = positive)]
+    pub density: f64,
+    /// Rotation period, hours.
+    #[arg(long, value_name = "HOURS", value_parser = positive)]
+    pub spin_period: f64,
+    /// Spin axis in the shape model's frame, X,Y,Z (need not be a unit vector).
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,1", value_parser = parse_axis, allow_hyphen_values = true)]
+    pub spin_axis: [f64; 3],
+    /// Scenario file of the lander (TOML); without it, the default scenario. Its slope and
+    /// gravity are replaced by the body's range, drawn per sample.
+    #[arg(long, value_name = "FILE")]
+    pub scenario: Option<PathBuf>,
+    /// Samples of the sweep (accepts 1e6).
+    #[arg(long, value_name = "N", default_value = "1e6", value_parser = parse_count)]
+    pub samples: u64,
+    /// Seed of the sweep (overrides the scenario's `seed`).
+    #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
+    pub seed: Option<u64>,
+    /// Half-width of a facet's window in slope, deg: its shares count the samples within
+    /// this much of its slope.
+    #[arg(long, value_name = "DEG", default_value = "1", value_parser = positive)]
+    pub slope_window: f64,
+    /// Half-width of a facet's window in gravity, as a fraction of its gravity.
+    #[arg(long, value_name = "FRACTION", default_value = "0.05", value_parser = fraction)]
+    pub gravity_window: f64,
+    /// Folder of the map (made if missing): sweep.arrow, facets.arrow, site.md, map.png
+    /// and site.html. Running the same command again keeps the sweep, or continues it
+    /// where it was interrupted.
+    #[arg(long, value_name = "DIR", default_value = "site")]
+    pub out_dir: PathBuf,
+    /// Format of the sweep and of the facets' table.
+    #[arg(long, value_enum, default_value = "arrow")]
+    pub format: Format,
+    /// Worker threads (`--threads`).
+    #[command(flatten)]
+    pub threads: Threads,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+    /// SIMD kernel, as for `touchdown sweep`.
+    #[arg(long, value_name = "KERNEL", default_value = "auto", value_parser = parse_kernel)]
+    pub kernel: KernelChoice,
+}
+
+/// A finite number greater than 0.
+fn positive(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!("expected a number greater than 0, not {s:?}")),
+    }
+}
+
+/// A number greater than 0 and below 1.
+fn fraction(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x > 0.0 && x < 1.0 => Ok(x),
+        _ => Err(format!("expected a fraction between 0 and 1, not {s:?}")),
+    }
+}
+
+/// Three finite numbers `X,Y,Z`, not all 0.
+fn parse_axis(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+        .collect::<Option<Vec<f64>>>()
+        .filter(|v| v.len() == 3)
+        .ok_or_else(|| format!("expected three numbers X,Y,Z, not {s:?}"))?;
+    if v.iter().all(|x| *x == 0.0) {
+        return Err("the spin axis may not be 0,0,0".into());
+    }
+    Ok([v[0], v[1], v[2]])
+}
+
+/// Runs `touchdown site`.
+pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
+    let window = Window {
+        slope_deg: args.slope_window,
+        gravity_fraction: args.gravity_window,
+    };
+    let settings = SiteSettings {
+        shape: args.shape.clone(),
+        metres_per_unit: match args.units {
+            Units::M => 1.0,
+            Units::Km => 1000.0,
+        },
+        density_kg_m3: args.density,
+        spin_period_h: args.spin_period,
+        spin_axis: args.spin_axis,
+        scenario: args.scenario.clone(),
+        samples: args.samples,
+        seed: args.seed,
+        window,
+        out_dir: args.out_dir.clone(),
+        format: args.format,
+        threads: args.threads.threads,
+        quiet: args.quiet,
+        kernel: args.kernel,
+    };
+    let run = crate::run::site::run(&settings)?;
+    let dir = &args.out_dir;
+    let ext = match args.format {
+        Format::Arrow => "arrow",
+        Format::Parquet => "parquet",
+    };
+    let table = dir.join(format!("facets.{ext}"));
+    let md = dir.join("site.md");
+    let sweep_name = run
+        .sweep_file
+        .file_name()
+        .unwrap_or_default()
+        .to_string_lossy()
+        .into_owned();
+    crate::site::table::write(
+        &table,
+        args.format,
+        &run.site,
+        &crate::site::table::About {
+            shape: &args.shape.display().to_string(),
+            window,
+            sweep_file: &sweep_name,
+            sweep_text: &run.sweep_text,
+            samples: args.samples,
+        },
+    )?;
+    let scenario = args
+        .scenario
+        .as_ref()
+        .map_or("the default scenario".to_string(), |p| {
+            p.display().to_string()
+        });
+    let text = crate::site::summary::markdown(
+        &run.site,
+        &crate::site::summary::Sweep {
+            scenario: &scenario,
+            samples: args.samples,
+            slope_range_deg: run.slope_range_deg,
+            gravity_range_m_s2: run.gravity_range_m_s2,
+            window,
+        },
+    );
+    crate::output::write_text(&md, &text)?;
+    print_out(
+        "the map's summary",
+        &format!(
+            "the sweep {} -> {}\nthe facets' gravity in {:.1} s\n\n{text}\nwrote {}, {}\n",
+            run.log,
+            run.sweep_file.display(),
+            run.gravity_s,
+            table.display(),
+            md.display(),
+        ),
+    )?;
+    drop(run.lock);
+    Ok(())
+}

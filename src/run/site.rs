@@ -1,0 +1,355 @@
+//! The runs of a landing-site map: the shape model read and checked, each facet's gravity
+//! and slope, the one sweep over the (slope, gravity) range the body spans kept in the
+//! map's folder (kept when done before, resumed when interrupted, run otherwise), and each
+//! facet's outcome shares from it (`site::estimate`).
+
+use super::execute::{RunOptions, execute, warn_untouched};
+use super::load::{KernelChoice, load_scenario, scenario_from_toml};
+use super::plan::SweepPlan;
+use super::signals::stop_on_signals;
+use super::workers::worker_pool;
+use crate::output::FolderLock;
+use crate::output::format::Format;
+use crate::output::sweep::SweepFile;
+use crate::reference::Outcome;
+use crate::scenario::Scenario;
+use crate::shape::{FacetGravity, Polyhedron, read_obj, unit_axis};
+use crate::site::estimate::{Counts, Window};
+use crate::site::{Body, Site, SiteFacet};
+use anyhow::{Context as _, anyhow, bail};
+use std::path::{Path, PathBuf};
+
+/// The steepest slope a site's sweep draws, deg: a lander cannot stand on 90 deg, and the
+/// scenario refuses it. Facets steeper than it get no shares.
+pub const SLOPE_LIMIT_DEG: f64 = 89.0;
+
+/// The settings of a landing-site map (`touchdown site`'s flags).
+#[derive(Debug, Clone)]
+pub struct SiteSettings {
+    /// The shape model, a Wavefront OBJ file.
+    pub shape: PathBuf,
+    /// Metres per unit of the shape file's coordinates.
+    pub metres_per_unit: f64,
+    /// Bulk density, kg/m^3.
+    pub density_kg_m3: f64,
+    /// Rotation period, h.
+    pub spin_period_h: f64,
+    /// Spin axis in the shape model's frame (need not be a unit vector).
+    pub spin_axis: [f64; 3],
+    /// Scenario file of the lander; the default scenario without it.
+    pub scenario: Option<PathBuf>,
+    /// Samples of the sweep.
+    pub samples: u64,
+    /// Overrides the scenario's seed.
+    pub seed: Option<u64>,
+    /// The window a facet's shares count samples in.
+    pub window: Window,
+    /// The map's folder.
+    pub out_dir: PathBuf,
+    /// Format of the sweep and of the facets' table.
+    pub format: Format,
+    /// Worker threads (default: one per core).
+    pub threads: Option<usize>,
+    /// No progress bar, no banner.
+    pub quiet: bool,
+    /// The kernel the sweep runs with (`--kernel`).
+    pub kernel: KernelChoice,
+}
+
+/// What a site's run leaves: the map, its sweep and a line on what was done with it.
+pub struct SiteRun {
+    /// Every facet's numbers.
+    pub site: Site,
+    /// The sweep file, in the map's folder.
+    pub sweep_file: PathBuf,
+    /// The sweep's scenario text (the lander's, with slope and gravity drawn).
+    pub sweep_text: String,
+    /// The ranges of slope (deg) and gravity (m/s^2) the sweep drew.
+    pub slope_range_deg: (f64, f64),
+    /// See `slope_range_deg`.
+    pub gravity_range_m_s2: (f64, f64),
+    /// What was done with the sweep.
+    pub log: String,
+    /// Seconds to compute the facets' gravity.
+    pub gravity_s: f64,
+    /// The folder, locked until the map is written.
+    pub lock: FolderLock,
+}
+
+/// Reads and checks the shape model, and computes every facet's gravity and slope on `pool`.
+fn body_of(
+    args: &SiteSettings,
+    pool: &rayon::ThreadPool,
+) -> anyhow::Result<(Body, Vec<FacetGravity>)> {
+    let mesh = read_obj(&args.shape, args.metres_per_unit)?
+        .check()
+        .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
+    let poly = Polyhedron::new(mesh, args.density_kg_m3)
+        .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
+    let axis = unit_axis(args.spin_axis).map_err(|e| anyhow!("--spin-axis: {e}"))?;
+    let omega = 2.0 * std::f64::consts::PI / (args.spin_period_h * 3600.0);
+    let facets = pool.install(|| crate::shape::facets(&poly, axis, omega));
+    let mesh = poly.mesh();
+    let body = Body {
+        name: args
+            .shape
+            .file_stem()
+            .map_or("body".into(), |s| s.to_string_lossy().into_owned()),
+        vertices: mesh.mesh().vertices.clone(),
+        triangles: mesh
+            .mesh()
+            .facets
+            .iter()
+            .map(|f| [f[0], f[1], f[2]])
+            .collect(),
+        density_kg_m3: args.density_kg_m3,
+        spin_period_h: args.spin_period_h,
+        spin_axis: axis,
+        mass_kg: poly.mass_kg(),
+        volume_m3: mesh.volume_m3(),
+        area_m2: mesh.surface_area_m2(),
+    };
+    Ok((body, facets))
+}
+
+/// The ranges the sweep draws: slopes from 0 to the steepest facet's (below
+/// `SLOPE_LIMIT_DEG`) and gravities over the facets', each widened by the window, so
+/// that no facet's window is cut but at slope 0.
+fn ranges(facets: &[FacetGravity], window: Window) -> anyhow::Result<((f64, f64), (f64, f64))> {
+    let standing = || {
+        facets
+            .iter()
+            .filter(|f| f.slope_deg.is_finite() && f.slope_deg < SLOPE_LIMIT_DEG)
+    };
+    let steepest = standing().map(|f| f.slope_deg).fold(f64::NAN, f64::max);
+    if steepest.is_nan() {
+        bail!(
+            "no facet of the shape model has a slope a lander can stand on (below {SLOPE_LIMIT_DEG} deg)"
+        );
+    }
+    let g = standing().map(|f| f.effective_magnitude_m_s2);
+    let (g_min, g_max) = g.fold((f64::INFINITY, 0.0_f64), |(a, b), x| (a.min(x), b.max(x)));
+    if g_min.is_nan() || g_min <= 0.0 {
+        bail!(
+            "the effective gravity vanishes on the body (the spin balances the attraction there): no lander can settle"
+        );
+    }
+    Ok((
+        (0.0, (steepest + window.slope_deg).min(SLOPE_LIMIT_DEG)),
+        (
+            g_min * (1.0 - window.gravity_fraction),
+            g_max * (1.0 + window.gravity_fraction),
+        ),
+    ))
+}
+
+/// The scenario text of the site's sweep: the lander's `base` with its slopes and gravity
+/// drawn uniformly over `slopes` and `gravities`.
+fn sweep_text(
+    args: &SiteSettings,
+    base: &str,
+    slopes: (f64, f64),
+    gravities: (f64, f64),
+) -> anyhow::Result<(String, Scenario)> {
+    let mut table: toml::Table = base
+        .parse()
+        .map_err(|e| anyhow!("cannot read the scenario as TOML: {e}"))?;
+    let uniform = |(min, max): (f64, f64)| {
+        let mut t = toml::Table::new();
+        t.insert("dist".into(), "uniform".into());
+        t.insert("min".into(), min.into());
+        t.insert("max".into(), max.into());
+        toml::Value::Table(t)
+    };
+    table.insert("gravity_m_s2".into(), uniform(gravities));
+    let inputs = table
+        .entry("inputs")
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    let Some(inputs) = inputs.as_table_mut() else {
+        bail!("the scenario's `inputs` is not a table");
+    };
+    inputs.insert("slope_deg".into(), uniform(slopes));
+    let text = format!(
+        "# touchdown site: {} ({} kg/m^3, {} h), slope and gravity drawn over the body's\n{}",
+        args.shape.display(),
+        args.density_kg_m3,
+        args.spin_period_h,
+        toml::to_string(&table).context("cannot write the site's scenario")?
+    );
+    let scenario = scenario_from_toml(&text).map_err(|e| {
+        anyhow!("the site's sweep (the scenario with slope and gravity drawn): {e}")
+    })?;
+    if scenario.table.is_some() || scenario.design == crate::scenario::Design::SobolIndices {
+        bail!(
+            "a site's sweep draws its samples independently: its scenario may not be a Sobol-index design"
+        );
+    }
+    Ok((text, scenario))
+}
+
+/// The metadata value `key` of the sweep file `path`.
+fn stored(path: &Path, key: &str) -> anyhow::Result<Option<String>> {
+    Ok(SweepFile::open(path)?.metadata().get(key).cloned())
+}
+
+/// Runs the site's sweep into `file` unless it was done before (kept) or interrupted
+/// (resumed); returns what was done.
+fn sweep(
+    args: &SiteSettings,
+    file: &Path,
+    text: &str,
+    scenario: &Scenario,
+) -> anyhow::Result<String> {
+    let samples = args.samples.to_string();
+    let other = |path: &Path| {
+        anyhow!(
+            "{} is not this map's sweep (another body, lander, seed or sample count): remove \
+             it, or give the map another --out-dir",
+            path.display()
+        )
+    };
+    let same = |path: &Path| -> anyhow::Result<bool> {
+        Ok(stored(path, "touchdown.scenario")?.as_deref() == Some(text)
+            && stored(path, "touchdown.samples")?.as_deref() == Some(samples.as_str()))
+    };
+    let interrupted = crate::output::interrupted_path(file);
+    let pool = worker_pool(args.threads)?;
+    let stop = stop_on_signals()?;
+    let options = RunOptions {
+        pool: &pool,
+        stop: &stop,
+        progress: !args.quiet,
+        banner: false,
+        auto_kernel: matches!(args.kernel, KernelChoice::Auto),
+        keep: false,
+        counter: None,
+    };
+    let continue_with = "the same touchdown site command again".to_string();
+    if file.exists() {
+        return if same(file)? {
+            Ok("kept (done before)".into())
+        } else {
+            Err(other(file))
+        };
+    }
+    let mut plan = if interrupted.exists() {
+        if !same(&interrupted)? {
+            return Err(other(&interrupted));
+        }
+        SweepPlan::resuming(file, None, args.kernel)?
+    } else {
+        crate::output::check_output_path(file)?;
+        SweepPlan {
+            scenario: scenario.clone(),
+            text: text.to_string(),
+            samples: args.samples,
+            shard: None,
+            format: args.format,
+            out: Some(file.to_path_buf()),
+            kernel: kernels::isa::KernelKind {
+                isa: args.kernel.isa()?,
+                precision: scenario.simulation.precision,
+            },
+            resume: None,
+            continue_with: String::new(),
+        }
+    };
+    plan.continue_with = continue_with;
+    let done = execute(&plan, &options)?;
+    warn_untouched(&done, &plan.scenario, "in the site's sweep, ");
+    Ok(format!(
+        "{} samples in {:.1} s{}",
+        done.computed,
+        done.wall_s,
+        if done.rows > done.computed {
+            format!(", {} kept", done.rows - done.computed)
+        } else {
+            String::new()
+        }
+    ))
+}
+
+/// The sweep's samples counted for the facets' windows.
+fn counts(
+    file: &Path,
+    slopes: (f64, f64),
+    gravities: (f64, f64),
+    window: Window,
+) -> anyhow::Result<Counts> {
+    let mut f = SweepFile::open(file)?;
+    let mut samples: Vec<(f64, f64, Outcome)> = Vec::new();
+    for b in f.batches() {
+        let b = b?;
+        let (slope, gravity) = (b.f64s("slope_deg")?, b.f64s("gravity_m_s2")?);
+        for (i, o) in b.outcomes()?.into_iter().enumerate() {
+            samples.push((slope.value(i), gravity.value(i), o));
+        }
+    }
+    Ok(Counts::new(
+        samples.into_iter(),
+        slopes.1,
+        gravities,
+        window,
+    ))
+}
+
+/// Makes the map: the body, its sweep (run, resumed or kept) and each facet's shares.
+pub fn run(args: &SiteSettings) -> anyhow::Result<SiteRun> {
+    let dir = &args.out_dir;
+    if dir.exists() && !dir.is_dir() {
+        bail!("--out-dir {}: that is a file, not a folder", dir.display());
+    }
+    let (_, base_text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+    let pool = worker_pool(args.threads)?;
+    let started = std::time::Instant::now();
+    let (body, gravity) = body_of(args, &pool)?;
+    let gravity_s = started.elapsed().as_secs_f64();
+    let (slopes, gravities) = ranges(&gravity, args.window)?;
+    let (text, scenario) = sweep_text(args, &base_text, slopes, gravities)?;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| anyhow!("cannot make the map's folder {}: {e}", dir.display()))?;
+    let lock = FolderLock::acquire(dir, false)?;
+    let ext = match args.format {
+        Format::Arrow => "arrow",
+        Format::Parquet => "parquet",
+    };
+    let sweep_file = dir.join(format!("sweep.{ext}"));
+    let log = sweep(args, &sweep_file, &text, &scenario)?;
+    let counts = counts(&sweep_file, slopes, gravities, args.window)?;
+    let facets = gravity
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let standing = f.slope_deg < SLOPE_LIMIT_DEG
+                && counts.covers(f.slope_deg, f.effective_magnitude_m_s2);
+            let (samples, shares) = if standing {
+                counts.shares(f.slope_deg, f.effective_magnitude_m_s2, args.window)
+            } else {
+                (0, None)
+            };
+            SiteFacet {
+                facet: i as u32,
+                centroid_m: f.centroid_m,
+                latitude_deg: f.latitude_deg,
+                longitude_deg: f.longitude_deg,
+                normal: f.normal,
+                area_m2: f.area_m2,
+                effective_gravity_m_s2: f.effective_m_s2,
+                gravity_m_s2: f.effective_magnitude_m_s2,
+                slope_deg: f.slope_deg,
+                samples,
+                shares,
+            }
+        })
+        .collect();
+    Ok(SiteRun {
+        site: Site { body, facets },
+        sweep_file,
+        sweep_text: text,
+        slope_range_deg: slopes,
+        gravity_range_m_s2: gravities,
+        log,
+        gravity_s,
+        lock,
+    })
+}

@@ -1,0 +1,242 @@
+//! Each facet's outcome shares from one sweep over the slopes and gravities of the body: the
+//! samples whose slope lies within `slope_deg` of the facet's and whose gravity lies within
+//! the fraction `gravity_fraction` of the facet's (a window centred on the facet's own
+//! slope and gravity), counted; their shares with Wilson's 95 % intervals.
+//!
+//! The sweep draws slope and gravity uniformly, so a window's samples are a uniform draw
+//! over the window and its share is P averaged over it: for a P smooth in the window, off
+//! the facet's own by `P_ss h_s^2 / 6 + P_gg h_g^2 / 6` (the second derivatives; the first
+//! cancel in a centred window), the first-order term `P_s h_s / 2` only where the window
+//! meets slope 0 and is cut there (docs/MODEL.md, "Landing sites").
+//!
+//! Counting is done once on a fine grid of the (slope, gravity) plane, with a summed-area
+//! table per outcome, so a facet's window costs a constant time whatever the samples:
+//! the window's edges are rounded to the grid, `GRID_PER_WINDOW` cells to a half-width.
+
+use super::{FacetShare, SHARE_OUTCOMES};
+use crate::reference::Outcome;
+use crate::stats::wilson_interval;
+
+/// Grid cells to a window's half-width (in slope, and in gravity at the smallest gravity):
+/// the window's edges fall within half a cell, 1/16 of the half-width, of where they should.
+pub const GRID_PER_WINDOW: f64 = 8.0;
+
+/// The window a facet's shares count samples in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Window {
+    /// Half-width in slope, deg.
+    pub slope_deg: f64,
+    /// Half-width in gravity, as a fraction of the facet's gravity.
+    pub gravity_fraction: f64,
+}
+
+impl Default for Window {
+    fn default() -> Self {
+        Window {
+            slope_deg: 1.0,
+            gravity_fraction: 0.05,
+        }
+    }
+}
+
+/// The sweep's samples counted on the grid: per outcome of `SHARE_OUTCOMES` and in all, a
+/// summed-area table.
+pub struct Counts {
+    slope_max_deg: f64,
+    gravity_min: f64,
+    gravity_max: f64,
+    slope_cell: f64,
+    gravity_cell: f64,
+    columns: usize,
+    rows: usize,
+    /// `(rows + 1) x (columns + 1)` sums per table: the samples in cells `[0, r) x [0, c)`;
+    /// tables for the outcomes of `SHARE_OUTCOMES`, then all samples.
+    tables: Vec<Vec<u64>>,
+}
+
+impl Counts {
+    /// Counts `samples` (slope, deg; gravity, m/s^2; outcome) of a sweep that drew slopes on
+    /// `[0, slope_max_deg]` and gravities on `[gravity_min, gravity_max]` uniformly, on a
+    /// grid for `window`. Samples outside the ranges are not counted.
+    #[must_use]
+    pub fn new(
+        samples: impl Iterator<Item = (f64, f64, Outcome)>,
+        slope_max_deg: f64,
+        (gravity_min, gravity_max): (f64, f64),
+        window: Window,
+    ) -> Counts {
+        let slope_cell = window.slope_deg / GRID_PER_WINDOW;
+        let gravity_cell = gravity_min * window.gravity_fraction / GRID_PER_WINDOW;
+        let columns = ((slope_max_deg / slope_cell).ceil() as usize).max(1);
+        let rows = (((gravity_max - gravity_min) / gravity_cell).ceil() as usize).max(1);
+        let mut cells = vec![vec![0u64; rows * columns]; SHARE_OUTCOMES.len() + 1];
+        for (slope, gravity, outcome) in samples {
+            if !(0.0..=slope_max_deg).contains(&slope)
+                || !(gravity_min..=gravity_max).contains(&gravity)
+            {
+                continue;
+            }
+            let c = ((slope / slope_cell) as usize).min(columns - 1);
+            let r = (((gravity - gravity_min) / gravity_cell) as usize).min(rows - 1);
+            cells[SHARE_OUTCOMES.len()][r * columns + c] += 1;
+            if let Some(k) = SHARE_OUTCOMES.iter().position(|o| *o == outcome) {
+                cells[k][r * columns + c] += 1;
+            }
+        }
+        let tables = cells
+            .iter()
+            .map(|cell| {
+                let mut t = vec![0u64; (rows + 1) * (columns + 1)];
+                for r in 0..rows {
+                    for c in 0..columns {
+                        t[(r + 1) * (columns + 1) + c + 1] = cell[r * columns + c]
+                            + t[r * (columns + 1) + c + 1]
+                            + t[(r + 1) * (columns + 1) + c]
+                            - t[r * (columns + 1) + c];
+                    }
+                }
+                t
+            })
+            .collect();
+        Counts {
+            slope_max_deg,
+            gravity_min,
+            gravity_max,
+            slope_cell,
+            gravity_cell,
+            columns,
+            rows,
+            tables,
+        }
+    }
+
+    /// The samples in cells `[c0, c1) x [r0, r1)` of table `k`.
+    fn sum(&self, k: usize, (c0, c1): (usize, usize), (r0, r1): (usize, usize)) -> u64 {
+        let t = &self.tables[k];
+        let w = self.columns + 1;
+        t[r1 * w + c1] + t[r0 * w + c0] - t[r0 * w + c1] - t[r1 * w + c0]
+    }
+
+    /// The samples in the window about `slope_deg` and `gravity`, and the shares of
+    /// `SHARE_OUTCOMES` among them; `None` where the window holds no sample.
+    #[must_use]
+    pub fn shares(
+        &self,
+        slope_deg: f64,
+        gravity: f64,
+        window: Window,
+    ) -> (u64, Option<[FacetShare; 4]>) {
+        // Window edges rounded to the nearest grid line, clipped to the sweep's ranges.
+        let line = |x: f64, cell: f64, n: usize| ((x / cell).round().max(0.0) as usize).min(n);
+        let slope = (
+            line(slope_deg - window.slope_deg, self.slope_cell, self.columns),
+            line(slope_deg + window.slope_deg, self.slope_cell, self.columns),
+        );
+        let half = gravity * window.gravity_fraction;
+        let g = (
+            line(
+                gravity - half - self.gravity_min,
+                self.gravity_cell,
+                self.rows,
+            ),
+            line(
+                gravity + half - self.gravity_min,
+                self.gravity_cell,
+                self.rows,
+            ),
+        );
+        let n = self.sum(SHARE_OUTCOMES.len(), slope, g);
+        if n == 0 {
+            return (0, None);
+        }
+        let shares = std::array::from_fn(|k| {
+            let hits = self.sum(k, slope, g);
+            let (low, high) = wilson_interval(hits, n);
+            FacetShare {
+                p: hits as f64 / n as f64,
+                low,
+                high,
+            }
+        });
+        (n, Some(shares))
+    }
+
+    /// Whether a facet of this slope and gravity lies within the sweep's ranges.
+    #[must_use]
+    pub fn covers(&self, slope_deg: f64, gravity: f64) -> bool {
+        (0.0..=self.slope_max_deg).contains(&slope_deg)
+            && (self.gravity_min..=self.gravity_max).contains(&gravity)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Samples on a regular lattice of the plane, stable below `limit(gravity)`.
+    fn lattice(limit: impl Fn(f64) -> f64) -> Vec<(f64, f64, Outcome)> {
+        let mut v = Vec::new();
+        for i in 0..3000 {
+            for j in 0..200 {
+                let s = 30.0 * (f64::from(i) + 0.5) / 3000.0;
+                let g = 1.0 + (f64::from(j) + 0.5) / 200.0;
+                let o = if s < limit(g) {
+                    Outcome::Stable
+                } else {
+                    Outcome::Tipped
+                };
+                v.push((s, g, o));
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn a_window_counts_the_samples_near_a_facet_and_no_others() {
+        let window = Window::default();
+        // Stable below 15 deg at any gravity: a window wholly below is all stable, one
+        // wholly above none, and one centred on 15 deg half (the share of a step at its
+        // centre), within the grid's rounding of the edges (1/16 of the half-width on
+        // each side: 1/32 of the window, 0.031).
+        let samples = lattice(|_| 15.0);
+        let counts = Counts::new(samples.iter().copied(), 30.0, (1.0, 2.0), window);
+        let (n, s) = counts.shares(10.0, 1.5, window);
+        let s = s.unwrap();
+        assert_eq!((s[0].p, s[1].p), (1.0, 0.0));
+        // 2 deg of 30 and 10 % of 1.5 out of 1: 3000 * 2/30 * 200 * 0.15 = 6000 samples.
+        assert!((n as f64 - 6000.0).abs() <= 0.07 * 6000.0, "{n}");
+        let (_, s) = counts.shares(20.0, 1.2, window);
+        assert_eq!(s.unwrap()[0].p, 0.0);
+        let (_, s) = counts.shares(15.0, 1.7, window);
+        let p = s.unwrap()[0].p;
+        assert!((p - 0.5).abs() < 0.031, "{p}");
+        // The Wilson interval of its count.
+        let (n, s) = counts.shares(15.0, 1.7, window);
+        let s = s.unwrap()[0];
+        let (lo, hi) = wilson_interval((s.p * n as f64).round() as u64, n);
+        assert!((s.low - lo).abs() < 1e-12 && (s.high - hi).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_gravity_window_follows_the_facets_gravity() {
+        // Stable below a limit that rises with gravity (10 deg at g = 1, 20 at g = 2): a
+        // window at g centred on that limit is half stable (the gravity window is narrow:
+        // the limit moves by 10 g * 0.05 = 0.75 deg over it at g = 1.5, symmetric about the
+        // centre, so the share stays 0.5 within the grid's rounding).
+        let samples = lattice(|g| 10.0 * g);
+        let window = Window::default();
+        let counts = Counts::new(samples.iter().copied(), 30.0, (1.0, 2.0), window);
+        for g in [1.2, 1.5, 1.8] {
+            let (_, s) = counts.shares(10.0 * g, g, window);
+            let p = s.unwrap()[0].p;
+            assert!((p - 0.5).abs() < 0.035, "g {g}: {p}");
+            // Away from the limit by more than the window: all one way.
+            let (_, s) = counts.shares(10.0 * g - 2.0, g, window);
+            assert_eq!(s.unwrap()[0].p, 1.0, "g {g}");
+        }
+        // Outside the sweep's ranges: no samples.
+        let (n, s) = counts.shares(15.0, 3.0, window);
+        assert_eq!((n, s), (0, None));
+        assert!(!counts.covers(15.0, 3.0) && counts.covers(15.0, 1.5));
+    }
+}

@@ -1,0 +1,152 @@
+//! The Markdown summary of a landing-site map: the body (size, gravity, slopes) and how
+//! landings end over its surface, by area.
+
+use super::estimate::Window;
+use super::{SAFE_P_STABLE, SHARE_OUTCOMES, Site};
+use std::fmt::Write as _;
+
+/// What the summary says of the map's sweep.
+pub struct Sweep<'a> {
+    /// Where the lander comes from (the scenario file, or the default scenario).
+    pub scenario: &'a str,
+    /// Samples of the sweep.
+    pub samples: u64,
+    /// The slopes (deg) and gravities (m/s^2) it drew.
+    pub slope_range_deg: (f64, f64),
+    /// See `slope_range_deg`.
+    pub gravity_range_m_s2: (f64, f64),
+    /// The window a facet's shares count samples in.
+    pub window: Window,
+}
+
+/// The area-weighted quantile `q` of `values` (value, area): the smallest value with at
+/// least the share `q` of the area at or below it.
+fn area_quantile(values: &mut [(f64, f64)], q: f64) -> f64 {
+    values.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: f64 = values.iter().map(|v| v.1).sum();
+    let mut below = 0.0;
+    for (x, a) in values.iter() {
+        below += a;
+        if below >= q * total {
+            return *x;
+        }
+    }
+    values.last().map_or(f64::NAN, |v| v.0)
+}
+
+/// The summary of `site`.
+#[must_use]
+pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
+    let b = &site.body;
+    let f = &site.facets;
+    let area: f64 = f.iter().map(|f| f.area_m2).sum();
+    let share = |keep: &dyn Fn(&super::SiteFacet) -> bool| {
+        // `+ 0.0`: an empty sum is -0.0, which would print as "-0.00".
+        100.0 * f.iter().filter(|x| keep(x)).map(|x| x.area_m2).sum::<f64>() / area + 0.0
+    };
+    let mean = |v: &dyn Fn(&super::SiteFacet) -> f64| {
+        f.iter().map(|x| v(x) * x.area_m2).sum::<f64>() / area
+    };
+    let g_min = f
+        .iter()
+        .map(|x| x.gravity_m_s2)
+        .fold(f64::INFINITY, f64::min);
+    let g_max = f.iter().map(|x| x.gravity_m_s2).fold(0.0, f64::max);
+    let mut slopes: Vec<(f64, f64)> = f.iter().map(|x| (x.slope_deg, x.area_m2)).collect();
+    let median = area_quantile(&mut slopes, 0.5);
+    let steepest = f.iter().map(|x| x.slope_deg).fold(0.0, f64::max);
+    let mut s = String::new();
+    let _ = writeln!(s, "# Landing sites on {}\n", b.name);
+    let _ = writeln!(s, "| the body | |\n|---|---|");
+    let _ = writeln!(
+        s,
+        "| shape | {} facets, {} vertices; volume {:.4e} m^3, surface {:.4e} m^2 |",
+        f.len(),
+        b.vertices.len(),
+        b.volume_m3,
+        b.area_m2
+    );
+    let _ = writeln!(
+        s,
+        "| mass | {:.4e} kg (density {} kg/m^3) |",
+        b.mass_kg, b.density_kg_m3
+    );
+    let _ = writeln!(
+        s,
+        "| spin | period {} h about ({:.4}, {:.4}, {:.4}) |",
+        b.spin_period_h, b.spin_axis[0], b.spin_axis[1], b.spin_axis[2]
+    );
+    let _ = writeln!(
+        s,
+        "| effective gravity | {g_min:.4e} to {g_max:.4e} m/s^2 (ratio {:.3}), mean {:.4e} by area |",
+        g_max / g_min,
+        mean(&|x| x.gravity_m_s2)
+    );
+    let _ = writeln!(
+        s,
+        "| slope | mean {:.2} deg by area, median {median:.2}, steepest {steepest:.2}; below 10 / 20 / 30 deg: {:.1} / {:.1} / {:.1} % of the surface |",
+        mean(&|x| x.slope_deg),
+        share(&|x| x.slope_deg < 10.0),
+        share(&|x| x.slope_deg < 20.0),
+        share(&|x| x.slope_deg < 30.0),
+    );
+    let _ = writeln!(
+        s,
+        "\n## Landings\n\nThe lander of {}, {} samples over slopes {:.2}-{:.2} deg and \
+         gravities {:.4e}-{:.4e} m/s^2; each facet counts the samples within {} deg of its \
+         slope and {} % of its gravity.\n",
+        sweep.scenario,
+        sweep.samples,
+        sweep.slope_range_deg.0,
+        sweep.slope_range_deg.1,
+        sweep.gravity_range_m_s2.0,
+        sweep.gravity_range_m_s2.1,
+        sweep.window.slope_deg,
+        100.0 * sweep.window.gravity_fraction
+    );
+    let _ = writeln!(
+        s,
+        "**P(stable) >= {SAFE_P_STABLE} on {:.2} % of the surface** ({:.4e} m^2).\n",
+        100.0 * site.safe_area_fraction(),
+        site.safe_area_fraction() * area
+    );
+    let p = |x: &super::SiteFacet| x.p_stable().map(|s| s.p);
+    let _ = writeln!(s, "| P(stable) | share of the surface |\n|---|---|");
+    for (label, keep) in [
+        (
+            "below 0.5",
+            &(|x: Option<f64>| x.is_some_and(|p| p < 0.5)) as &dyn Fn(Option<f64>) -> bool,
+        ),
+        ("0.5 to 0.9", &|x: Option<f64>| {
+            x.is_some_and(|p| (0.5..0.9).contains(&p))
+        }),
+        ("0.9 to 0.99", &|x: Option<f64>| {
+            x.is_some_and(|p| (0.9..SAFE_P_STABLE).contains(&p))
+        }),
+        ("0.99 or more", &|x: Option<f64>| {
+            x.is_some_and(|p| p >= SAFE_P_STABLE)
+        }),
+        ("none (too steep to stand on)", &|x: Option<f64>| {
+            x.is_none()
+        }),
+    ] {
+        let _ = writeln!(s, "| {label} | {:.2} % |", share(&|x| keep(p(x))));
+    }
+    let with: Vec<&super::SiteFacet> = f.iter().filter(|x| x.shares.is_some()).collect();
+    let with_area: f64 = with.iter().map(|x| x.area_m2).sum();
+    let _ = writeln!(s, "\n| outcome | mean share by area |\n|---|---|");
+    for (k, o) in SHARE_OUTCOMES.iter().enumerate() {
+        let m = with
+            .iter()
+            .map(|x| x.shares.map_or(0.0, |s| s[k].p) * x.area_m2)
+            .sum::<f64>()
+            / with_area;
+        let _ = writeln!(s, "| {} | {:.4} |", o.name(), m);
+    }
+    let mut n: Vec<u64> = with.iter().map(|x| x.samples).collect();
+    n.sort_unstable();
+    if let (Some(lo), Some(mid)) = (n.first(), n.get(n.len() / 2)) {
+        let _ = writeln!(s, "\nSamples per facet: {lo} at least, {mid} median.");
+    }
+    s
+}

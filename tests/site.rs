@@ -1,0 +1,266 @@
+//! `touchdown site` end to end: a spinning sphere's map against the closed form of its
+//! gravity and slopes, its facets' P(stable) against direct sweeps at their own slope and
+//! gravity, and bad shapes and flags refused with exit code 2.
+
+use crate::common::{TempDir, arrow_column as column, touchdown};
+use crate::shape::icosphere;
+use touchdown::shape::Mesh;
+
+/// The mesh as OBJ text, in metres.
+fn obj(mesh: &Mesh) -> String {
+    let mut s = String::from("# a test body\n");
+    for v in &mesh.vertices {
+        s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    for f in &mesh.facets {
+        s += &format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+    }
+    s
+}
+
+/// A sphere of radius 30 km and density 2000 kg/m^3 (surface gravity 0.0168 m/s^2, the
+/// default scenario's), spinning in 3.3 h: `w^2 R` is half its gravity, so the effective
+/// gravity falls from `g` at the poles to `g / 2` at the equator and slopes reach 19.5 deg
+/// at 45 deg of latitude.
+const RADIUS_M: f64 = 30_000.0;
+const DENSITY: f64 = 2000.0;
+const PERIOD_H: f64 = 3.3;
+
+/// A lander gentler than the default's, so that P(stable) spans 0.2-0.9 on the sphere.
+const GENTLE: &str = "[inputs]\nrelease_height_m = { dist = \"uniform\", min = 0.5, max = 2.0 }\n\
+    rate_x_deg_s = { dist = \"normal\", mean = 0.0, sd = 0.2 }\n\
+    rate_y_deg_s = { dist = \"normal\", mean = 0.0, sd = 0.2 }\n\
+    rate_z_deg_s = { dist = \"normal\", mean = 0.0, sd = 0.2 }\n\
+    [simulation]\nt_max_s = 60.0\n";
+
+/// The stable count and the sample count a sweep's summary prints.
+fn stable_of(stdout: &str) -> (u64, u64) {
+    let number = |key: &str| {
+        stdout
+            .lines()
+            .find_map(|l| l.trim().strip_prefix(key))
+            .and_then(|r| r.split_whitespace().next())
+            .and_then(|n| n.parse::<u64>().ok())
+            .unwrap_or_else(|| panic!("no {key:?} line in {stdout}"))
+    };
+    (number("stable"), number("samples"))
+}
+
+#[test]
+fn a_spinning_spheres_map_matches_its_closed_form_and_direct_sweeps() {
+    let dir = TempDir::new("site-sphere");
+    dir.write("sphere.obj", &obj(&icosphere(RADIUS_M, 3)));
+    dir.write("gentle.toml", GENTLE);
+    let period = PERIOD_H.to_string();
+    let args = [
+        "site",
+        "sphere.obj",
+        "--units",
+        "m",
+        "--density",
+        "2000",
+        "--spin-period",
+        &period,
+        "--scenario",
+        "gentle.toml",
+        "--samples",
+        "20000",
+        "--out-dir",
+        "map",
+        "--quiet",
+    ];
+    let run = touchdown(dir.path(), &args);
+    assert_eq!(run.code, Some(0), "{run}");
+    let table = dir.join("map/facets.arrow");
+    for f in ["map/sweep.arrow", "map/site.md"] {
+        assert!(dir.join(f).is_file(), "no {f}: {run}");
+    }
+    let get = |name: &str| column(&table, name).unwrap_or_else(|| panic!("no column {name}"));
+    let (lat, slope, g) = (get("latitude_deg"), get("slope_deg"), get("gravity_m_s2"));
+    assert_eq!(lat.len(), 1280);
+    // The closed form of a spinning sphere: at latitude phi the effective gravity has the
+    // components `g - w^2 R cos^2 phi` (radial) and `w^2 R cos phi sin phi` (towards the
+    // equator), its slope is their angle. A facet of this icosphere (1280 facets) is up to
+    // 4.4 deg wide, its centroid 0.3 % inside the sphere and its normal up to ~2 deg off the
+    // radial: slopes within 2.5 deg and gravity within 1.5 % of the closed form at the
+    // centroid's latitude (the attraction of the polyhedron, 0.2 % under the sphere's
+    // volume, and the centroid's depth make up the latter).
+    let g0 = 4.0 / 3.0 * std::f64::consts::PI * 6.674_30e-11 * DENSITY * RADIUS_M;
+    let w2r = (2.0 * std::f64::consts::PI / (PERIOD_H * 3600.0)).powi(2) * RADIUS_M;
+    for i in 0..lat.len() {
+        let phi = lat[i].to_radians();
+        let (radial, along) = (
+            g0 - w2r * phi.cos().powi(2),
+            w2r * phi.cos() * phi.sin().abs(),
+        );
+        let closed_slope = along.atan2(radial).to_degrees();
+        let closed_g = radial.hypot(along);
+        assert!(
+            (slope[i] - closed_slope).abs() < 2.5,
+            "facet {i} at {:.1} deg: slope {} against {closed_slope}",
+            lat[i],
+            slope[i]
+        );
+        assert!(
+            (g[i] / closed_g - 1.0).abs() < 0.015,
+            "facet {i}: gravity {} against {closed_g}",
+            g[i]
+        );
+    }
+    // Three facets' P(stable) against a direct sweep at their own slope and gravity (3,000
+    // samples each, the lander otherwise drawn as in the map): the 95 % intervals must
+    // overlap. The map's share averages P over +-1 deg and +-5 % of gravity; P changes by
+    // at most ~3 % per degree here, so that averaging moves it well inside the intervals.
+    let (p, lo, hi) = (get("p_stable"), get("p_stable_low"), get("p_stable_high"));
+    let mut order: Vec<usize> = (0..lat.len()).collect();
+    order.sort_by(|a, b| slope[*a].total_cmp(&slope[*b]));
+    for &i in &[order[20], order[640], order[1260]] {
+        let text = format!(
+            "gravity_m_s2 = {}\n{}",
+            g[i],
+            GENTLE.replace(
+                "[inputs]\n",
+                &format!("[inputs]\nslope_deg = {}\n", slope[i])
+            )
+        );
+        dir.write("direct.toml", &text);
+        let out = format!("direct-{i}.arrow");
+        let run = touchdown(
+            dir.path(),
+            &[
+                "sweep",
+                "--scenario",
+                "direct.toml",
+                "--samples",
+                "3000",
+                "--out",
+                &out,
+            ],
+        );
+        assert_eq!(run.code, Some(0), "{run}");
+        let (k, n) = stable_of(&run.stdout);
+        let q = k as f64 / n as f64;
+        let z = 1.96 * (q * (1.0 - q) / n as f64).sqrt();
+        assert!(
+            q - z <= hi[i] && q + z >= lo[i],
+            "facet {i} (slope {:.2} deg, g {:.4e}): map {:.3} [{:.3}, {:.3}], direct {q:.3} +- {z:.3}",
+            slope[i],
+            g[i],
+            p[i],
+            lo[i],
+            hi[i]
+        );
+    }
+    // Run again: the sweep is kept, and the table is the same.
+    let before = std::fs::read(&table).unwrap();
+    let again = touchdown(dir.path(), &args);
+    assert!(again.stdout.contains("kept (done before)"), "{again}");
+    assert_eq!(std::fs::read(&table).unwrap(), before);
+}
+
+#[test]
+fn bad_shapes_and_flags_are_refused_naming_them() {
+    let dir = TempDir::new("site-bad");
+    let cube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+    let faces = [
+        "f 1 3 2", "f 1 4 3", "f 5 6 7", "f 5 7 8", "f 1 2 6", "f 1 6 5", "f 2 3 7", "f 2 7 6",
+        "f 3 4 8", "f 3 8 7", "f 4 1 5", "f 4 5 8",
+    ];
+    let whole = format!("{cube}{}\n", faces.join("\n"));
+    let open = format!("{cube}{}\n", faces[..11].join("\n"));
+    let inverted = whole
+        .lines()
+        .map(|l| match l.strip_prefix("f ") {
+            Some(r) => {
+                let v: Vec<&str> = r.split(' ').collect();
+                format!("f {} {} {}", v[0], v[2], v[1])
+            }
+            None => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let degenerate = format!("{whole}v 2 0 0\nv 3 0 0\nf 1 9 10\n");
+    for (name, text, expect) in [
+        ("open", open.as_str(), "not closed"),
+        ("inverted", inverted.as_str(), "inverted"),
+        ("degenerate", degenerate.as_str(), "degenerate"),
+        ("not OBJ", "v 1 2\n", "line 1"),
+    ] {
+        dir.write("body.obj", text);
+        let run = touchdown(
+            dir.path(),
+            &[
+                "site",
+                "body.obj",
+                "--units",
+                "km",
+                "--density",
+                "2000",
+                "--spin-period",
+                "5",
+                "--samples",
+                "100",
+                "--out-dir",
+                "out",
+                "--quiet",
+            ],
+        );
+        assert_eq!(run.code, Some(2), "{name}: {run}");
+        assert!(
+            run.stderr.contains(expect) && run.stderr.contains("body.obj"),
+            "{name}: no {expect:?} in {run}"
+        );
+        assert!(!run.stderr.contains("panicked"), "{name}: {run}");
+        assert!(!dir.join("out/sweep.arrow").exists(), "{name}");
+    }
+    dir.write("body.obj", &whole);
+    for (name, flags, expect) in [
+        (
+            "no units",
+            vec!["--density", "2000", "--spin-period", "5"],
+            "--units",
+        ),
+        (
+            "a density of 0",
+            vec!["--units", "m", "--density", "0", "--spin-period", "5"],
+            "--density",
+        ),
+        (
+            "a zero spin axis",
+            vec![
+                "--units",
+                "m",
+                "--density",
+                "2000",
+                "--spin-period",
+                "5",
+                "--spin-axis",
+                "0,0,0",
+            ],
+            "--spin-axis",
+        ),
+        (
+            "a gravity window of 1",
+            vec![
+                "--units",
+                "m",
+                "--density",
+                "2000",
+                "--spin-period",
+                "5",
+                "--gravity-window",
+                "1",
+            ],
+            "--gravity-window",
+        ),
+    ] {
+        let mut args = vec!["site", "body.obj", "--out-dir", "out", "--quiet"];
+        args.extend(flags);
+        let run = touchdown(dir.path(), &args);
+        assert_eq!(run.code, Some(2), "{name}: {run}");
+        assert!(
+            run.stderr.contains(expect),
+            "{name}: no {expect:?} in {run}"
+        );
+    }
+}
