@@ -129,7 +129,9 @@ fn bad_lines_are_refused_by_number() {
         let e = refused(text);
         assert!(e.contains(message), "{text:?}: {e}");
     }
-    let e = parse_obj("v 1e308 0 0\n", "km.obj", 1000.0).unwrap_err().to_string();
+    let e = parse_obj("v 1e308 0 0\n", "km.obj", 1000.0)
+        .unwrap_err()
+        .to_string();
     assert_eq!(e, "km.obj, line 1: '1e308' overflows in metres");
     let long = format!("v 0 0 0\n#{}\n", " ".repeat(MAX_LINE_BYTES));
     assert_eq!(
