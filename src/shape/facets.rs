@@ -63,7 +63,8 @@ pub fn slope_deg(normal: [f64; 3], effective: [f64; 3]) -> f64 {
 
 /// Facet `facet`'s (0-based) gravity and slope on `poly` spinning at `omega_rad_s` about
 /// `spin_axis_unit` (see [`centrifugal`]); the attraction as [`Polyhedron::field_on_facet`]
-/// takes it.
+/// takes it. Panics if `facet` is not a facet of the mesh (a caller's mistake, never the
+/// file's).
 #[must_use]
 pub fn facet_gravity(
     poly: &Polyhedron,

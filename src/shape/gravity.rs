@@ -174,7 +174,8 @@ impl Polyhedron {
     /// a point in the facet's plane: its term is left out, and the potential and the
     /// attraction are the limits from either side (both are continuous across a facet). The
     /// centroid is off every edge, so every `L_e` is finite. The Laplacian is the limit
-    /// from outside, where a lander stands (about 0; `w_f = -2 pi`).
+    /// from outside, where a lander stands (about 0; `w_f = -2 pi`). Panics if `facet` is
+    /// not a facet of the mesh (a caller's mistake, never the file's).
     #[must_use]
     pub fn field_on_facet(&self, facet: usize) -> Field {
         let centroid = self.mesh.facet_geometry()[facet].centroid_m;
