@@ -124,7 +124,9 @@ fn ranges(facets: &[FacetGravity], window: Window) -> anyhow::Result<((f64, f64)
     let steepest = standing().map(|f| f.slope_deg).fold(f64::NAN, f64::max);
     if steepest.is_nan() {
         bail!(
-            "no facet of the shape model has a slope a lander can stand on (below {SLOPE_LIMIT_DEG} deg)"
+            "no facet of the shape model has a slope a lander can stand on (below \
+             {SLOPE_LIMIT_DEG} deg against its effective gravity): a spin this fast throws the \
+             surface off (check --spin-period and its units, hours)"
         );
     }
     let g = standing().map(|f| f.effective_magnitude_m_s2);
@@ -169,9 +171,14 @@ fn sweep_text(
         bail!("the scenario's `inputs` is not a table");
     };
     inputs.insert("slope_deg".into(), uniform(slopes));
+    // The body by its file's name: the sweep depends on its ranges alone, so a map made
+    // again from another folder keeps it.
     let text = format!(
         "# touchdown site: {} ({} kg/m^3, {} h), slope and gravity drawn over the body's\n{}",
-        args.shape.display(),
+        args.shape.file_name().map_or_else(
+            || args.shape.display().to_string(),
+            |n| n.to_string_lossy().into_owned()
+        ),
         args.density_kg_m3,
         args.spin_period_h,
         toml::to_string(&table).context("cannot write the site's scenario")?
