@@ -35,6 +35,7 @@ mod scenario_fuzz;
 mod scenarios;
 mod sensitivity;
 mod shards;
+mod site_pictures;
 mod struts;
 mod study;
 mod sweep_cli;
