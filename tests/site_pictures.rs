@@ -7,12 +7,15 @@
 //! latitude band (and, in the seam's column, of their longitude), so the colour of every
 //! place of the map is known. `TOUCHDOWN_SITE_PICTURES=DIR` copies the pictures into DIR.
 
+use crate::animate::chromium;
 use crate::common::TempDir;
 use std::path::Path;
+use std::process::Command;
 use touchdown::plot::site::{
     NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, p_stable_colour, scale_colour, site_map,
 };
 use touchdown::site::{Body, FacetShare, Site, SiteFacet};
+use touchdown::view::site::site_page;
 
 /// Longitudes and latitude bands of the test sphere: 24 x 12, 15 deg each, 528 facets.
 const LONS: usize = 24;
@@ -44,11 +47,7 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    [(1, 2), (2, 0), (0, 1)].map(|(i, j)| a[i] * b[j] - a[j] * b[i])
 }
 
 /// A share `p` with an interval of +-0.02 within [0, 1].
@@ -129,12 +128,10 @@ fn facet(i: usize, vertices: &[[f64; 3]], t: [u32; 3], band: f64) -> SiteFacet {
     let centroid = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
     let n = cross(sub(b, a), sub(c, a));
     let twice_area = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    let lat = centroid[2]
-        .atan2(centroid[0].hypot(centroid[1]))
-        .to_degrees();
+    let r = (centroid[0].powi(2) + centroid[1].powi(2) + centroid[2].powi(2)).sqrt();
+    let lat = (centroid[2] / r).asin().to_degrees();
     let lon = centroid[1].atan2(centroid[0]).to_degrees();
     let g = 1e-4 * (1.0 + band.abs() / 90.0);
-    let r = (centroid[0].powi(2) + centroid[1].powi(2) + centroid[2].powi(2)).sqrt();
     let shares = p_stable(band, lon).map(|p| {
         let rest = (1.0 - p) / 3.0;
         [share(p), share(rest), share(rest), share(rest)]
@@ -170,11 +167,7 @@ fn frame(img: &image::RgbImage, from: u32, to: u32) -> (f64, f64, f64, f64) {
     for y in 0..img.height() {
         let (mut run, mut best) = (0, (0, 0));
         for x in from..to {
-            run = if img.get_pixel(x, y).0 == [0, 0, 0] {
-                run + 1
-            } else {
-                0
-            };
+            run = (run + 1) * u32::from(img.get_pixel(x, y).0 == [0, 0, 0]);
             if run > best.1 - best.0 {
                 best = (x + 1 - run, x);
             }
@@ -186,12 +179,8 @@ fn frame(img: &image::RgbImage, from: u32, to: u32) -> (f64, f64, f64, f64) {
     assert!(rows.len() >= 2, "no frame between columns {from} and {to}");
     let (top, (left, right)) = rows[0];
     let (bottom, _) = rows[rows.len() - 1];
-    (
-        f64::from(left),
-        f64::from(right),
-        f64::from(top),
-        f64::from(bottom),
-    )
+    let px = f64::from;
+    (px(left), px(right), px(top), px(bottom))
 }
 
 /// The pixel of the map in `frame` at longitude `lon` and latitude `lat`, deg.
@@ -310,4 +299,299 @@ fn a_map_of_nothing_or_of_bad_triangles_is_refused_and_nan_is_drawn_grey() {
     let img = image::open(&path).expect("a PNG").to_rgb8();
     let right = frame(&img, 900, 1800);
     assert_eq!(at(&img, right, 40.0, 37.0), NO_SHARES);
+}
+
+/// The JSON of a page (the site as the page reads it).
+fn page_data(page: &str) -> serde_json::Value {
+    let start = page
+        .find("<script id=\"site-data\" type=\"application/json\">")
+        .expect("the page's data");
+    let json = &page[start..];
+    let json = &json[json.find('>').unwrap() + 1..json.find("</script>").unwrap()];
+    serde_json::from_str(&json.replace("<\\/", "</")).expect("the page's JSON")
+}
+
+/// The numbers of a column of the page's facets (NaN for null).
+fn column(data: &serde_json::Value, name: &str) -> Vec<f64> {
+    data["facets"][name]
+        .as_array()
+        .unwrap_or_else(|| panic!("no column {name}"))
+        .iter()
+        .map(|v| v.as_f64().unwrap_or(f64::NAN))
+        .collect()
+}
+
+/// Whether `page` (a number the page holds, rounded to `digits` significant digits) is
+/// `v`: within half a unit of its last digit (and a little for the decimal's binary
+/// reading), or both missing.
+fn rounded(page: f64, v: f64, digits: i32) -> bool {
+    if v.is_nan() {
+        return page.is_nan();
+    }
+    let unit = 10f64.powi(v.abs().log10().floor() as i32 + 1 - digits);
+    (page - v).abs() <= 0.5 * unit * (1.0 + 1e-9) || (v == 0.0 && page == 0.0)
+}
+
+#[test]
+fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
+    let dir = TempDir::new("site-page");
+    let mut site = sphere(LONS, BANDS);
+    // A name that would end the page's script element unless escaped.
+    site.body.name = "sphere </script><b>\"x\"".into();
+    let path = dir.join("sphere.html");
+    site_page(&site, &path).expect("the page");
+    keep(&path);
+    assert_eq!(dir.entries(), vec!["sphere.html".to_string()], "one file");
+    let page = std::fs::read_to_string(&path).unwrap();
+    let never = [
+        "http://",
+        "https://",
+        "<script src",
+        "fetch(",
+        "XMLHttpRequest",
+        "import(",
+    ];
+    assert!(never.iter().all(|n| !page.contains(n)), "the page fetches");
+    let data = page_data(&page);
+    assert_eq!(data["body"]["name"], site.body.name.as_str());
+    let n = site.facets.len();
+    let triangles = data["triangles"].as_array().unwrap();
+    assert_eq!(triangles.len(), 3 * n);
+    for (k, t) in site.body.triangles.iter().flatten().enumerate() {
+        assert_eq!(triangles[k].as_u64(), Some(u64::from(*t)));
+    }
+    let vertices = data["vertices"].as_array().unwrap();
+    assert_eq!(vertices.len(), 3 * site.body.vertices.len());
+    for (k, v) in site.body.vertices.iter().flatten().enumerate() {
+        assert!(rounded(vertices[k].as_f64().unwrap(), *v, 6), "vertex {k}");
+    }
+    // Every facet's numbers, in the facets' order, rounded as the page's doc says.
+    let (ids, samples) = (column(&data, "facet"), column(&data, "samples"));
+    let [lat, lon, slope, g] =
+        ["latitude_deg", "longitude_deg", "slope_deg", "gravity_m_s2"].map(|k| column(&data, k));
+    let shares = ["stable", "tipped", "sliding", "bouncing"].map(|k| column(&data, k));
+    let (low, high) = (column(&data, "stable_low"), column(&data, "stable_high"));
+    assert_eq!(ids.len(), n);
+    for (k, f) in site.facets.iter().enumerate() {
+        assert_eq!(ids[k], f64::from(f.facet));
+        assert_eq!(samples[k], f.samples as f64);
+        assert!(rounded(lat[k], f.latitude_deg, 4) && rounded(lon[k], f.longitude_deg, 4));
+        assert!(rounded(slope[k], f.slope_deg, 4) && rounded(g[k], f.gravity_m_s2, 4));
+        match f.shares {
+            Some(s) => {
+                for (o, column) in shares.iter().enumerate() {
+                    assert!(rounded(column[k], s[o].p, 4), "facet {k} share {o}");
+                }
+                assert!(rounded(low[k], s[0].low, 4) && rounded(high[k], s[0].high, 4));
+            }
+            None => assert!(shares.iter().chain([&low, &high]).all(|c| c[k].is_nan())),
+        }
+    }
+    let safe = data["body"]["safe_area_fraction"].as_f64().unwrap();
+    assert!(rounded(safe, site.safe_area_fraction(), 6));
+    // The scales are the map picture's.
+    let scale = |name: &str| -> Vec<[u8; 3]> {
+        let v = &data["scales"][name];
+        serde_json::from_value(v.clone())
+            .unwrap_or_else(|_| vec![serde_json::from_value(v.clone()).unwrap()])
+    };
+    assert_eq!(scale("p_stable"), P_STABLE_SCALE.to_vec());
+    assert_eq!(scale("slope"), SLOPE_SCALE.to_vec());
+    assert_eq!(
+        (scale("safe"), scale("none")),
+        (vec![SAFE], vec![NO_SHARES])
+    );
+    // Nothing to show: refused, nothing written.
+    let mut empty = site.clone();
+    empty.facets.clear();
+    empty.body.triangles.clear();
+    let nothing = dir.join("empty.html");
+    let e = site_page(&empty, &nothing).expect_err("no facets");
+    assert!(e.to_string().contains("no facets"), "{e}");
+    assert!(!nothing.exists());
+}
+
+/// A body of 12,192 facets, as many as the shipped Itokawa model: its map drawn quickly,
+/// its page well under 3 MB.
+#[test]
+fn the_pictures_of_twelve_thousand_facets_are_quick_and_small() {
+    let dir = TempDir::new("site-12k");
+    let site = sphere(48, 128);
+    assert_eq!(site.facets.len(), 12_192);
+    let (map, page) = (dir.join("map.png"), dir.join("page.html"));
+    let t = std::time::Instant::now();
+    site_map(&site, &map).expect("the map");
+    let map_s = t.elapsed().as_secs_f64();
+    let t = std::time::Instant::now();
+    site_page(&site, &page).expect("the page");
+    let page_s = t.elapsed().as_secs_f64();
+    let bytes = std::fs::metadata(&page).unwrap().len();
+    eprintln!("12,192 facets: map {map_s:.2} s, page {page_s:.2} s and {bytes} bytes");
+    assert!(bytes < 3_000_000, "{bytes} bytes");
+    // Not a benchmark (a release build on a shared machine takes 0.3 s or so): a guard
+    // against work that grows faster than the facets.
+    assert!(map_s < 5.0 && page_s < 5.0, "{map_s} s, {page_s} s");
+}
+
+/// Drives the page in headless Chromium with the helpers of tests/python/browser_view.py:
+/// no console errors, the body drawn, the pointer at the canvas's centre names a facet
+/// (printed as `hover: {"text": ..., "camera": ...}`), the slope's colouring redraws it.
+const BROWSER_CHECK: &str = r#"
+import base64, json, os, shutil, signal, sys, tempfile, time
+chromium, html, out_dir, helpers = sys.argv[1:5]
+sys.path.insert(0, helpers)
+import browser_view as bv
+
+def checks(page):
+    fails = []
+    def check(good, text):
+        print(("ok: " if good else "FAIL: ") + text, flush=True)
+        if not good:
+            fails.append(text)
+    since = [page.call(f"{d}.enable") for d in ("Runtime", "Log", "Page")] and len(page.events)
+    page.call("Page.navigate", {"url": "file://" + os.path.abspath(html)})
+    page.wait_event("Page.loadEventFired", since, 15)
+    if page.evaluate("window.touchdownSiteReady === true") is not True:  # set as it loads
+        check(False, "window.touchdownSiteReady not true once the page loaded")
+        return 1
+    page.evaluate(bv.REPAINT, awaited=True)
+    st = page.evaluate(bv.CANVAS_STATS)
+    share = st["nonbg"] / max(1, st["w"] * st["h"])
+    check(share > 0.05 and st["distinct"] > 8,
+          f"3D canvas drawn: {100 * share:.1f} % of {st['w']}x{st['h']} px differ from the "
+          f"background, {st['distinct']} colours")
+    box = page.evaluate(bv.BOX % "view3d")
+    x, y = box["x"] + box["w"] / 2, box["y"] + box["h"] / 2
+    page.call("Input.dispatchMouseEvent", {"type": "mouseMoved", "x": x, "y": y})
+    page.evaluate(bv.REPAINT, awaited=True)
+    hover = page.evaluate("window.touchdownHover || ''")
+    shown = page.evaluate("document.getElementById('hover').textContent")
+    check(bool(hover) and hover == shown, "the pointer at the centre names a facet")
+    print("hover: " + json.dumps({"text": hover, "camera": page.evaluate("window.touchdownCamera")}))
+    with open(os.path.join(out_dir, "page.png"), "wb") as f:
+        f.write(base64.b64decode(page.call("Page.captureScreenshot", {"format": "png"}, 15)["data"]))
+    r = page.evaluate("(() => { const r = document.querySelector('input[value=slope]')"
+                      ".getBoundingClientRect(); return {x: r.x + r.width / 2, y: r.y + r.height / 2}; })()")
+    for kind in ("mousePressed", "mouseReleased"):
+        page.call("Input.dispatchMouseEvent", {"type": kind, "x": r["x"], "y": r["y"],
+                                               "button": "left", "clickCount": 1})
+    time.sleep(0.2)
+    page.evaluate(bv.REPAINT, awaited=True)
+    after = page.evaluate(bv.CANVAS_STATS)
+    check(after["hash"] != st["hash"], "colouring by slope redraws the body")
+    check(not page.errors, "no console errors" if not page.errors else
+          "console errors: " + " || ".join(page.errors[:10]))
+    return 1 if fails else 0
+
+def main():
+    def expired(*_): raise bv.Timeout("the check took over 50 s")
+    signal.signal(signal.SIGALRM, expired)
+    signal.alarm(50)
+    profile, proc, ws = tempfile.mkdtemp(prefix="touchdown-site-"), None, None
+    try:
+        try:
+            proc, url = bv.start_chromium(chromium, profile)
+        except bv.StartError as e:
+            print(f"FAIL: Chromium cannot start: {e}", flush=True)
+            return 3
+        ws = bv.WebSocket(bv.open_page(url))
+        return checks(bv.CDP(ws))
+    except (bv.Timeout, ConnectionError, OSError, RuntimeError, ValueError, KeyError) as e:
+        print(f"FAIL: {type(e).__name__}: {e}", flush=True)
+        return 1
+    finally:
+        signal.alarm(0)
+        ws and ws.sock.close()
+        bv.stop_chromium(proc)
+        shutil.rmtree(profile, ignore_errors=True)
+
+sys.exit(main())
+"#;
+
+/// The facet of `site` that the ray from `from` along `dir` meets first (Moller and
+/// Trumbore's test), if any.
+fn facet_on_ray(site: &Site, from: [f64; 3], dir: [f64; 3]) -> Option<usize> {
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let mut best: Option<(f64, usize)> = None;
+    for (k, t) in site.body.triangles.iter().enumerate() {
+        let [a, b, c] = t.map(|i| site.body.vertices[i as usize]);
+        let (e1, e2) = (sub(b, a), sub(c, a));
+        let p = cross(dir, e2);
+        let det = dot(e1, p);
+        if det.abs() < 1e-12 {
+            continue;
+        }
+        let s = sub(from, a);
+        let u = dot(s, p) / det;
+        let q = cross(s, e1);
+        let v = dot(dir, q) / det;
+        let t = dot(e2, q) / det;
+        if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && best.is_none_or(|b| t < b.0) {
+            best = Some((t, k));
+        }
+    }
+    best.map(|b| b.1)
+}
+
+#[test]
+fn the_page_draws_the_body_in_a_browser_and_names_the_facet_under_the_pointer() {
+    let Some(browser) =
+        chromium("the_page_draws_the_body_in_a_browser_and_names_the_facet_under_the_pointer")
+    else {
+        return;
+    };
+    let dir = TempDir::new("site-browser");
+    let site = sphere(LONS, BANDS);
+    let page = dir.join("sphere.html");
+    site_page(&site, &page).expect("the page");
+    let script = dir.write("check.py", BROWSER_CHECK);
+    let helpers = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python");
+    let mut check = Command::new("python3");
+    check
+        .arg(&script)
+        .arg(&browser)
+        .arg(&page)
+        .arg(dir.path())
+        .arg(&helpers);
+    let o = check.output().expect("run the browser check");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    if o.status.code() == Some(3)
+        && std::env::var("TOUCHDOWN_REQUIRE_CHROMIUM").as_deref() != Ok("1")
+    {
+        eprintln!("SKIPPED the browser check: Chromium does not start:\n{stdout}");
+        return;
+    }
+    keep(&dir.join("page.png"));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stdout}\n{stderr}");
+    let line = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("hover: "))
+        .expect("hover line");
+    let hover: serde_json::Value = serde_json::from_str(line).unwrap();
+    let text = hover["text"].as_str().unwrap();
+    let vec3 = |v: &serde_json::Value| -> [f64; 3] { serde_json::from_value(v.clone()).unwrap() };
+    let (centre, toward) = (
+        vec3(&hover["camera"]["centre"]),
+        vec3(&hover["camera"]["toViewer"]),
+    );
+    // The pointer at the canvas's centre is over the body's centre: the facet named is the
+    // one the line of sight through it meets first from the viewer's side (the camera's
+    // default puts that point 2.5 deg, some 13 pixels, from the facet's nearest edge).
+    let from = [0, 1, 2].map(|k| centre[k] + 10.0 * RADIUS_M * toward[k]);
+    let back = toward.map(|x| -x);
+    let k = facet_on_ray(&site, from, back).expect("the line of sight meets the body");
+    let f = &site.facets[k];
+    let p = f.p_stable().expect("a facet with shares faces the camera");
+    // To 4 significant digits, as the page writes them.
+    let round4 = |v: f64| format!("{}", format!("{v:.3e}").parse::<f64>().unwrap());
+    let [p, low, high] = [p.p, p.low, p.high].map(round4);
+    for expected in [
+        format!("facet {}\n", f.facet),
+        format!("slope {}°", f.slope_deg),
+        format!("P(stable) {p} [{low}, {high}]"),
+        format!("samples {}", f.samples),
+    ] {
+        assert!(text.contains(&expected), "{expected:?} not in {text:?}");
+    }
 }
