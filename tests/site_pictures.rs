@@ -80,8 +80,7 @@ fn sphere(lons: usize, bands: usize) -> Site {
     }
     // Vertex k of ring j (1 to bands - 1), the poles 0 and 1.
     let ring = |j: usize, k: usize| (2 + (j - 1) * lons + k % lons) as u32;
-    let mut triangles = Vec::new();
-    let mut band_of = Vec::new();
+    let (mut triangles, mut facets) = (Vec::new(), Vec::new());
     for j in 0..bands {
         for k in 0..lons {
             // Counter-clockwise seen from outside: east is +k, north is -j.
@@ -94,17 +93,16 @@ fn sphere(lons: usize, bands: usize) -> Site {
                 ],
             };
             for t in quad {
+                facets.push(facet(
+                    triangles.len(),
+                    &vertices,
+                    t,
+                    90.0 - step * (j as f64 + 0.5),
+                ));
                 triangles.push(t);
-                band_of.push(90.0 - step * (j as f64 + 0.5));
             }
         }
     }
-    let facets = triangles
-        .iter()
-        .zip(&band_of)
-        .enumerate()
-        .map(|(i, (t, band))| facet(i, &vertices, *t, *band))
-        .collect();
     let area_m2 = 4.0 * std::f64::consts::PI * RADIUS_M * RADIUS_M;
     Site {
         body: Body {
@@ -159,10 +157,9 @@ fn keep(file: &Path) {
     }
 }
 
-/// A map's frame in the picture: its left, right, top and bottom pixel columns and rows
-/// (the black frame's rows: the longest runs of black, 400 pixels or more, between
-/// columns `from` and `to`).
-fn frame(img: &image::RgbImage, from: u32, to: u32) -> (f64, f64, f64, f64) {
+/// The frame of the map between columns `from` and `to` (the rows of its black edges: the
+/// longest runs of black, 400 pixels or more).
+fn frame(img: &image::RgbImage, from: u32, to: u32) -> Frame {
     let mut rows = Vec::new();
     for y in 0..img.height() {
         let (mut run, mut best) = (0, (0, 0));
@@ -183,8 +180,22 @@ fn frame(img: &image::RgbImage, from: u32, to: u32) -> (f64, f64, f64, f64) {
     (px(left), px(right), px(top), px(bottom))
 }
 
+/// The map of `site` written as `name` into `dir` and read back, with its two frames
+/// (P(stable)'s and the slope's).
+fn drawn(site: &Site, dir: &TempDir, name: &str) -> (image::RgbImage, Frame, Frame) {
+    let path = dir.join(name);
+    site_map(site, &path).expect("the map");
+    keep(&path);
+    let img = image::open(&path).expect("a PNG").to_rgb8();
+    let (left, right) = (frame(&img, 0, 900), frame(&img, 900, 1800));
+    (img, left, right)
+}
+
+/// A map's frame in the picture: its left, right, top and bottom pixel columns and rows.
+type Frame = (f64, f64, f64, f64);
+
 /// The pixel of the map in `frame` at longitude `lon` and latitude `lat`, deg.
-fn at(img: &image::RgbImage, frame: (f64, f64, f64, f64), lon: f64, lat: f64) -> [u8; 3] {
+fn at(img: &image::RgbImage, frame: Frame, lon: f64, lat: f64) -> [u8; 3] {
     let (l, r, t, b) = frame;
     let x = l + (lon + 180.0) / 360.0 * (r - l);
     let y = t + (90.0 - lat) / 180.0 * (b - t);
@@ -194,19 +205,14 @@ fn at(img: &image::RgbImage, frame: (f64, f64, f64, f64), lon: f64, lat: f64) ->
 #[test]
 fn the_map_colours_each_place_by_its_facet_s_p_stable_and_slope() {
     let dir = TempDir::new("site-map");
-    let site = sphere(LONS, BANDS);
-    assert_eq!(site.facets.len(), 528);
-    let path = dir.join("sphere-map.png");
-    site_map(&site, &path).expect("the map");
-    keep(&path);
-    let img = image::open(&path).expect("a PNG").to_rgb8();
+    let (img, left, right) = drawn(&sphere(LONS, BANDS), &dir, "sphere-map.png");
     assert_eq!(img.dimensions(), (1800, 700));
-    let left = frame(&img, 0, 900);
-    let right = frame(&img, 900, 1800);
     // About 2 pixels a degree each way (the frames measure 700 x 540 or so): the places
     // below lie 5 deg or more (10 pixels) from any band's edge, where colours change.
-    let w = left.1 - left.0;
-    assert!(w > 600.0 && left.3 - left.2 > 400.0, "{left:?}");
+    assert!(
+        left.1 - left.0 > 600.0 && left.3 - left.2 > 400.0,
+        "{left:?}"
+    );
     let expect = |lat: f64, lon: f64| p_stable_colour(p_stable(lat, lon));
     for (lon, lat, band) in [
         (40.0, 7.0, 7.5),
@@ -218,30 +224,45 @@ fn the_map_colours_each_place_by_its_facet_s_p_stable_and_slope() {
         (-100.0, 86.0, 82.5),
         (150.0, -86.0, -82.5),
     ] {
-        assert_eq!(
-            at(&img, left, lon, lat),
-            expect(band, lon),
-            "P(stable) at {lon}, {lat}"
-        );
-        let top = 90.0; // the largest slope, 82.5, rounded up to 10
-        assert_eq!(
-            at(&img, right, lon, lat),
-            scale_colour(&SLOPE_SCALE, slope(band) / top),
-            "slope at {lon}, {lat}"
-        );
+        // The slope's scale: 0 to 90 deg, the largest slope (82.5) rounded up to 10.
+        let slope_colour = scale_colour(&SLOPE_SCALE, slope(band) / 90.0);
+        let got = (at(&img, left, lon, lat), at(&img, right, lon, lat));
+        assert_eq!(got, (expect(band, lon), slope_colour), "{lon}, {lat}");
     }
-    assert_eq!(expect(7.5, 40.0), SAFE);
-    assert_eq!(expect(67.5, 40.0), NO_SHARES);
+    assert_eq!((expect(7.5, 40.0), expect(67.5, 40.0)), (SAFE, NO_SHARES));
+}
+
+#[test]
+fn a_facet_around_a_pole_covers_the_map_above_it() {
+    // A tetrahedron on one vertex, at the south pole: its top face rings the north pole
+    // (vertices at latitude 19.5 deg, longitudes 0, 120 and 240), its sides meet below.
+    let (h, s) = (RADIUS_M / 3.0, RADIUS_M * 8f64.sqrt() / 3.0);
+    let corner = |l: f64| [s * l.to_radians().cos(), s * l.to_radians().sin(), h];
+    let vertices = vec![
+        corner(0.0),
+        corner(120.0),
+        corner(240.0),
+        [0.0, 0.0, -RADIUS_M],
+    ];
+    let triangles = [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]];
+    // The top a landing site, the sides without shares.
+    let bands = [0.0, -75.0, -75.0, -75.0];
+    let mut site = sphere(4, 2);
+    site.facets = (0..4)
+        .map(|i| facet(i, &vertices, triangles[i], bands[i]))
+        .collect();
+    (site.body.vertices, site.body.triangles) = (vertices, triangles.to_vec());
+    let (img, left, _) = drawn(&site, &TempDir::new("site-pole"), "tetrahedron.png");
+    // Its edges run 35 deg above the equator or lower: above them, the top all round.
+    for (lon, lat, colour) in [(-150.0, 60.0, SAFE), (0.0, 86.0, SAFE), (170.0, 50.0, SAFE)] {
+        assert_eq!(at(&img, left, lon, lat), colour, "{lon}, {lat}");
+    }
+    assert_eq!(at(&img, left, 60.0, -60.0), NO_SHARES);
 }
 
 #[test]
 fn a_facet_across_the_seam_shows_on_both_edges_and_nowhere_between() {
-    let dir = TempDir::new("site-seam");
-    let site = sphere(LONS, BANDS);
-    let path = dir.join("sphere-map.png");
-    site_map(&site, &path).expect("the map");
-    let img = image::open(&path).expect("a PNG").to_rgb8();
-    let left = frame(&img, 0, 900);
+    let (img, left, _) = drawn(&sphere(LONS, BANDS), &TempDir::new("site-seam"), "seam.png");
     // The seam's column (P(stable) 0 between 15 and 60 deg of latitude): its facets span
     // 172.5 to -172.5 deg. No pixel of their colour lies between: drawn from 172.5 across
     // the map to -172.5, they would cover the facets drawn before them at most longitudes
@@ -287,17 +308,14 @@ fn a_map_of_nothing_or_of_bad_triangles_is_refused_and_nan_is_drawn_grey() {
     // Not a number anywhere: drawn, grey where a value is missing, no panic.
     let mut nan = sphere(LONS, BANDS);
     for f in &mut nan.facets {
-        f.slope_deg = f64::NAN;
-        f.longitude_deg = f64::NAN;
+        (f.slope_deg, f.longitude_deg) = (f64::NAN, f64::NAN);
         if let Some(s) = &mut f.shares {
             s[0].p = f64::NAN;
         }
     }
     nan.body.vertices[7] = [f64::NAN; 3];
     nan.body.density_kg_m3 = f64::NAN;
-    site_map(&nan, &path).expect("drawn");
-    let img = image::open(&path).expect("a PNG").to_rgb8();
-    let right = frame(&img, 900, 1800);
+    let (img, _, right) = drawn(&nan, &dir, "nan.png");
     assert_eq!(at(&img, right, 40.0, 37.0), NO_SHARES);
 }
 
@@ -354,24 +372,19 @@ fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
     assert!(never.iter().all(|n| !page.contains(n)), "the page fetches");
     let data = page_data(&page);
     assert_eq!(data["body"]["name"], site.body.name.as_str());
-    let n = site.facets.len();
-    let triangles = data["triangles"].as_array().unwrap();
-    assert_eq!(triangles.len(), 3 * n);
-    for (k, t) in site.body.triangles.iter().flatten().enumerate() {
-        assert_eq!(triangles[k].as_u64(), Some(u64::from(*t)));
-    }
-    let vertices = data["vertices"].as_array().unwrap();
-    assert_eq!(vertices.len(), 3 * site.body.vertices.len());
-    for (k, v) in site.body.vertices.iter().flatten().enumerate() {
-        assert!(rounded(vertices[k].as_f64().unwrap(), *v, 6), "vertex {k}");
-    }
+    let triangles: Vec<u32> = serde_json::from_value(data["triangles"].clone()).unwrap();
+    assert_eq!(triangles, site.body.triangles.concat());
+    let vertices: Vec<f64> = serde_json::from_value(data["vertices"].clone()).unwrap();
+    let exact = site.body.vertices.concat();
+    assert_eq!(vertices.len(), exact.len());
+    assert!(vertices.iter().zip(&exact).all(|(p, v)| rounded(*p, *v, 6)));
     // Every facet's numbers, in the facets' order, rounded as the page's doc says.
     let (ids, samples) = (column(&data, "facet"), column(&data, "samples"));
     let [lat, lon, slope, g] =
         ["latitude_deg", "longitude_deg", "slope_deg", "gravity_m_s2"].map(|k| column(&data, k));
     let shares = ["stable", "tipped", "sliding", "bouncing"].map(|k| column(&data, k));
     let (low, high) = (column(&data, "stable_low"), column(&data, "stable_high"));
-    assert_eq!(ids.len(), n);
+    assert_eq!(ids.len(), site.facets.len());
     for (k, f) in site.facets.iter().enumerate() {
         assert_eq!(ids[k], f64::from(f.facet));
         assert_eq!(samples[k], f.samples as f64);
@@ -446,20 +459,17 @@ def checks(page):
     fails = []
     def check(good, text):
         print(("ok: " if good else "FAIL: ") + text, flush=True)
-        if not good:
-            fails.append(text)
+        fails.extend([] if good else [text])
     since = [page.call(f"{d}.enable") for d in ("Runtime", "Log", "Page")] and len(page.events)
     page.call("Page.navigate", {"url": "file://" + os.path.abspath(html)})
     page.wait_event("Page.loadEventFired", since, 15)
-    if page.evaluate("window.touchdownSiteReady === true") is not True:  # set as it loads
-        check(False, "window.touchdownSiteReady not true once the page loaded")
-        return 1
+    # The page sets touchdownSiteReady as it loads.
+    check(page.evaluate("window.touchdownSiteReady === true") is True, "page ready")
     page.evaluate(bv.REPAINT, awaited=True)
     st = page.evaluate(bv.CANVAS_STATS)
     share = st["nonbg"] / max(1, st["w"] * st["h"])
-    check(share > 0.05 and st["distinct"] > 8,
-          f"3D canvas drawn: {100 * share:.1f} % of {st['w']}x{st['h']} px differ from the "
-          f"background, {st['distinct']} colours")
+    check(share > 0.05 and st["distinct"] > 8, f"3D canvas drawn: {100 * share:.1f} % of "
+          f"{st['w']}x{st['h']} px differ from the background, {st['distinct']} colours")
     box = page.evaluate(bv.BOX % "view3d")
     x, y = box["x"] + box["w"] / 2, box["y"] + box["h"] / 2
     page.call("Input.dispatchMouseEvent", {"type": "mouseMoved", "x": x, "y": y})
@@ -473,39 +483,32 @@ def checks(page):
     r = page.evaluate("(() => { const r = document.querySelector('input[value=slope]')"
                       ".getBoundingClientRect(); return {x: r.x + r.width / 2, y: r.y + r.height / 2}; })()")
     for kind in ("mousePressed", "mouseReleased"):
-        page.call("Input.dispatchMouseEvent", {"type": kind, "x": r["x"], "y": r["y"],
-                                               "button": "left", "clickCount": 1})
+        page.call("Input.dispatchMouseEvent", dict(type=kind, x=r["x"], y=r["y"], button="left", clickCount=1))
     time.sleep(0.2)
     page.evaluate(bv.REPAINT, awaited=True)
-    after = page.evaluate(bv.CANVAS_STATS)
-    check(after["hash"] != st["hash"], "colouring by slope redraws the body")
-    check(not page.errors, "no console errors" if not page.errors else
-          "console errors: " + " || ".join(page.errors[:10]))
+    check(page.evaluate(bv.CANVAS_STATS)["hash"] != st["hash"], "colouring by slope redraws the body")
+    check(not page.errors, "no console errors: " + " || ".join(page.errors[:10]))
     return 1 if fails else 0
 
-def main():
-    def expired(*_): raise bv.Timeout("the check took over 50 s")
-    signal.signal(signal.SIGALRM, expired)
-    signal.alarm(50)
-    profile, proc, ws = tempfile.mkdtemp(prefix="touchdown-site-"), None, None
-    try:
-        try:
-            proc, url = bv.start_chromium(chromium, profile)
-        except bv.StartError as e:
-            print(f"FAIL: Chromium cannot start: {e}", flush=True)
-            return 3
-        ws = bv.WebSocket(bv.open_page(url))
-        return checks(bv.CDP(ws))
-    except (bv.Timeout, ConnectionError, OSError, RuntimeError, ValueError, KeyError) as e:
-        print(f"FAIL: {type(e).__name__}: {e}", flush=True)
-        return 1
-    finally:
-        signal.alarm(0)
-        ws and ws.sock.close()
-        bv.stop_chromium(proc)
-        shutil.rmtree(profile, ignore_errors=True)
-
-sys.exit(main())
+def expired(*_): raise bv.Timeout("the check took over 50 s")
+signal.signal(signal.SIGALRM, expired)
+signal.alarm(50)
+profile, proc, ws, code = tempfile.mkdtemp(prefix="touchdown-site-"), None, None, 1
+try:
+    proc, url = bv.start_chromium(chromium, profile)
+    ws = bv.WebSocket(bv.open_page(url))
+    code = checks(bv.CDP(ws))
+except bv.StartError as e:
+    print(f"FAIL: Chromium cannot start: {e}", flush=True)
+    code = 3
+except (bv.Timeout, ConnectionError, OSError, RuntimeError, ValueError, KeyError) as e:
+    print(f"FAIL: {type(e).__name__}: {e}", flush=True)
+finally:
+    signal.alarm(0)
+    ws and ws.sock.close()
+    bv.stop_chromium(proc)
+    shutil.rmtree(profile, ignore_errors=True)
+sys.exit(code)
 "#;
 
 /// The facet of `site` that the ray from `from` along `dir` meets first (Moller and
