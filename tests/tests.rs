@@ -37,6 +37,7 @@ mod sensitivity;
 mod shape;
 mod shards;
 mod site;
+mod site_pictures;
 mod struts;
 mod study;
 mod sweep_cli;

@@ -7,6 +7,7 @@ pub(crate) mod canvas;
 mod envelope;
 mod exceedance;
 mod sensitivity;
+pub mod site;
 mod study;
 mod sweep;
 mod trace;

@@ -18,6 +18,8 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
 
+pub mod site;
+
 /// The page, with `PLACEHOLDER` where the trace goes.
 const TEMPLATE: &str = include_str!("viewer.html");
 const PLACEHOLDER: &str = "\"__TOUCHDOWN_TRACE_JSON__\"";
