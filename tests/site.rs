@@ -72,7 +72,12 @@ fn a_spinning_spheres_map_matches_its_closed_form_and_direct_sweeps() {
     let run = touchdown(dir.path(), &args);
     assert_eq!(run.code, Some(0), "{run}");
     let table = dir.join("map/facets.arrow");
-    for f in ["map/sweep.arrow", "map/site.md"] {
+    for f in [
+        "map/sweep.arrow",
+        "map/site.md",
+        "map/map.png",
+        "map/site.html",
+    ] {
         assert!(dir.join(f).is_file(), "no {f}: {run}");
     }
     let get = |name: &str| column(&table, name).unwrap_or_else(|| panic!("no column {name}"));

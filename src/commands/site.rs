@@ -174,15 +174,21 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         },
     );
     crate::output::write_text(&md, &text)?;
+    let png = dir.join("map.png");
+    let html = dir.join("site.html");
+    crate::plot::site::site_map(&run.site, &png)?;
+    crate::view::site::site_page(&run.site, &html)?;
     print_out(
         "the map's summary",
         &format!(
-            "the sweep {} -> {}\nthe facets' gravity in {:.1} s\n\n{text}\nwrote {}, {}\n",
+            "the sweep {} -> {}\nthe facets' gravity in {:.1} s\n\n{text}\nwrote {}, {}, {} and {}\n",
             run.log,
             run.sweep_file.display(),
             run.gravity_s,
             table.display(),
             md.display(),
+            png.display(),
+            html.display(),
         ),
     )?;
     drop(run.lock);
