@@ -424,12 +424,11 @@ fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
     assert!(!nothing.exists());
 }
 
-/// A body of 12,192 facets, as many as the shipped Itokawa model: its map drawn quickly,
-/// its page well under 3 MB.
+/// A body of 12,192 facets (as many as the shipped Itokawa model): its map drawn quickly,
+/// its page small.
 #[test]
 fn the_pictures_of_twelve_thousand_facets_are_quick_and_small() {
-    let dir = TempDir::new("site-12k");
-    let site = sphere(48, 128);
+    let (dir, site) = (TempDir::new("site-12k"), sphere(48, 128));
     assert_eq!(site.facets.len(), 12_192);
     let (map, page) = (dir.join("map.png"), dir.join("page.html"));
     let t = std::time::Instant::now();
@@ -440,7 +439,8 @@ fn the_pictures_of_twelve_thousand_facets_are_quick_and_small() {
     let page_s = t.elapsed().as_secs_f64();
     let bytes = std::fs::metadata(&page).unwrap().len();
     eprintln!("12,192 facets: map {map_s:.2} s, page {page_s:.2} s and {bytes} bytes");
-    assert!(bytes < 3_000_000, "{bytes} bytes");
+    // 1.28 MB, its numbers rounded (to 6 and 4 digits); 2.3 MB in full (the aim: < 3 MB).
+    assert!(bytes < 1_500_000, "{bytes} bytes");
     // Not a benchmark (a release build on a shared machine takes 0.3 s or so): a guard
     // against work that grows faster than the facets.
     assert!(map_s < 5.0 && page_s < 5.0, "{map_s} s, {page_s} s");

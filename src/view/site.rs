@@ -6,7 +6,7 @@
 //! The page is `site.html` with the site spliced in as JSON: nothing is fetched, so it opens
 //! from a mail attachment or a folder with no network. The numbers are rounded to what the
 //! page shows or draws (6 significant digits for coordinates, 4 for shares, slopes and
-//! gravity), which keeps the page of a 12,000-facet body near 1.5 MB.
+//! gravity), which keeps the page of a 12,000-facet body near 1.3 MB.
 
 use crate::output::{AtomicFile, cannot_write};
 use crate::plot::site::{NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, slope_top_deg};
