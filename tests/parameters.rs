@@ -219,25 +219,7 @@ fn drawn_parameters_are_columns_and_bad_draws_are_refused() {
             vec!["`surface.friction_coefficient`", "give min and max"],
         ),
     ] {
-        dir.write("bad.toml", text);
-        let run = touchdown(
-            dir.path(),
-            &[
-                "sweep",
-                "--quiet",
-                "--scenario",
-                "bad.toml",
-                "--samples",
-                "10",
-                "--out",
-                "bad.arrow",
-            ],
-        );
-        assert_eq!(run.code, Some(2), "{name}: {run}");
-        for e in expect {
-            assert!(run.stderr.contains(e), "{name}: no {e:?} in {run}");
-        }
-        assert!(!dir.join("bad.arrow").exists(), "{name}");
+        refused(&dir, name, text, &expect);
     }
 }
 
@@ -312,24 +294,30 @@ fn gravity_is_drawn_per_sample_and_each_lander_falls_in_its_own() {
             vec!["`gravity_m_s2`", "control loop"],
         ),
     ] {
-        dir.write("bad.toml", text);
-        let run = touchdown(
-            dir.path(),
-            &[
-                "sweep",
-                "--quiet",
-                "--scenario",
-                "bad.toml",
-                "--samples",
-                "10",
-                "--out",
-                "b.arrow",
-            ],
-        );
-        assert_eq!(run.code, Some(2), "{name}: {run}");
-        for e in expect {
-            assert!(run.stderr.contains(e), "{name}: no {e:?} in {run}");
-        }
-        assert!(!dir.join("b.arrow").exists(), "{name}");
+        refused(&dir, name, text, &expect);
     }
+}
+
+/// A sweep of the scenario `text` is refused with exit code 2, its message holding each of
+/// `expect`, and writes no file.
+fn refused(dir: &TempDir, name: &str, text: &str, expect: &[&str]) {
+    dir.write("bad.toml", text);
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--quiet",
+            "--scenario",
+            "bad.toml",
+            "--samples",
+            "10",
+            "--out",
+            "bad.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(2), "{name}: {run}");
+    for e in expect {
+        assert!(run.stderr.contains(e), "{name}: no {e:?} in {run}");
+    }
+    assert!(!dir.join("bad.arrow").exists(), "{name}");
 }

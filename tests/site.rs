@@ -232,34 +232,20 @@ fn bad_shapes_and_flags_are_refused_naming_them() {
         ),
         (
             "a zero spin axis",
-            vec![
-                "--units",
-                "m",
-                "--density",
-                "2000",
-                "--spin-period",
-                "5",
-                "--spin-axis",
-                "0,0,0",
-            ],
+            vec!["--spin-axis", "0,0,0"],
             "--spin-axis",
         ),
         (
             "a gravity window of 1",
-            vec![
-                "--units",
-                "m",
-                "--density",
-                "2000",
-                "--spin-period",
-                "5",
-                "--gravity-window",
-                "1",
-            ],
+            vec!["--gravity-window", "1"],
             "--gravity-window",
         ),
     ] {
         let mut args = vec!["site", "body.obj", "--out-dir", "out", "--quiet"];
+        // The body's flags where the case is not about them.
+        if flags.len() == 2 {
+            args.extend(["--units", "m", "--density", "2000", "--spin-period", "5"]);
+        }
         args.extend(flags);
         let run = touchdown(dir.path(), &args);
         assert_eq!(run.code, Some(2), "{name}: {run}");

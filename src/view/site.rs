@@ -8,6 +8,7 @@
 //! page shows or draws (6 significant digits for coordinates, 4 for shares, slopes and
 //! gravity), which keeps the page of a 12,000-facet body near 1.3 MB.
 
+use super::text;
 use crate::output::{AtomicFile, cannot_write};
 use crate::plot::site::{NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, slope_top_deg};
 use crate::site::{SAFE_P_STABLE, Site, SiteFacet};
@@ -178,20 +179,4 @@ fn colours(o: &mut String, stops: &[[u8; 3]]) {
         let _ = write!(o, "[{r},{g},{b}]");
     }
     o.push(']');
-}
-
-/// A string as JSON.
-fn text(o: &mut String, s: &str) {
-    o.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => o.push_str("\\\""),
-            '\\' => o.push_str("\\\\"),
-            c if (c as u32) < 0x20 => {
-                let _ = write!(o, "\\u{:04x}", c as u32);
-            }
-            c => o.push(c),
-        }
-    }
-    o.push('"');
 }
