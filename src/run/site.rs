@@ -203,6 +203,7 @@ fn stored(path: &Path, key: &str) -> anyhow::Result<Option<String>> {
 /// (resumed); returns what was done.
 fn sweep(
     args: &SiteSettings,
+    pool: &rayon::ThreadPool,
     file: &Path,
     text: &str,
     scenario: &Scenario,
@@ -220,10 +221,9 @@ fn sweep(
             && stored(path, "touchdown.samples")?.as_deref() == Some(samples.as_str()))
     };
     let interrupted = crate::output::interrupted_path(file);
-    let pool = worker_pool(args.threads)?;
     let stop = stop_on_signals()?;
     let options = RunOptions {
-        pool: &pool,
+        pool,
         stop: &stop,
         progress: !args.quiet,
         banner: false,
@@ -321,7 +321,7 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<SiteRun> {
         Format::Parquet => "parquet",
     };
     let sweep_file = dir.join(format!("sweep.{ext}"));
-    let log = sweep(args, &sweep_file, &text, &scenario)?;
+    let log = sweep(args, &pool, &sweep_file, &text, &scenario)?;
     let counts = counts(&sweep_file, slopes, gravities, args.window)?;
     let facets = gravity
         .iter()
