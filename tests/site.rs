@@ -255,3 +255,83 @@ fn bad_shapes_and_flags_are_refused_naming_them() {
         );
     }
 }
+
+/// A map whose sweep ran as shards (`--shard K/N`, as a cluster runs them) is the map of
+/// one process, byte for byte; a missing shard is named, and a shard makes no map.
+#[test]
+fn a_maps_sweep_run_in_shards_gives_the_same_map() {
+    let dir = TempDir::new("site-shards");
+    dir.write("sphere.obj", &obj(&icosphere(RADIUS_M, 2)));
+    dir.write("gentle.toml", GENTLE);
+    let period = PERIOD_H.to_string();
+    let args = |out: &'static str| {
+        vec![
+            "site".to_string(),
+            "sphere.obj".into(),
+            "--units".into(),
+            "m".into(),
+            "--density".into(),
+            "2000".into(),
+            "--spin-period".into(),
+            period.clone(),
+            "--scenario".into(),
+            "gentle.toml".into(),
+            "--samples".into(),
+            "3000".into(),
+            "--out-dir".into(),
+            out.into(),
+            "--quiet".into(),
+        ]
+    };
+    let run = |extra: &[&str], out: &'static str| {
+        let mut a = args(out);
+        a.extend(extra.iter().map(|s| (*s).to_string()));
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        touchdown(dir.path(), &a)
+    };
+    run(&[], "whole").assert_ok();
+    let first = run(&["--shard", "0/2"], "cut");
+    first.assert_ok();
+    assert!(
+        dir.join("cut/sweep.shard-0-of-2.arrow").is_file()
+            && !dir.join("cut/facets.arrow").exists()
+            && !dir.join("cut/sweep.arrow").exists(),
+        "a shard makes its slice and no map: {first}"
+    );
+    assert!(
+        first.stdout.contains("shard 0/2 of the map's sweep"),
+        "{first}"
+    );
+    let missing = run(&[], "cut");
+    assert_eq!(missing.code, Some(2), "{missing}");
+    assert!(missing.stderr.contains("lacks shard 1/2"), "{missing}");
+    run(&["--shard", "1/2"], "cut").assert_ok();
+    let merged = run(&[], "cut");
+    merged.assert_ok();
+    assert!(
+        merged
+            .stdout
+            .contains("merged from 2 shards (3000 samples)"),
+        "{merged}"
+    );
+    for f in [
+        "sweep.arrow",
+        "facets.arrow",
+        "site.md",
+        "map.png",
+        "site.html",
+    ] {
+        let (a, b) = (
+            std::fs::read(dir.join(&format!("whole/{f}"))).unwrap(),
+            std::fs::read(dir.join(&format!("cut/{f}"))).unwrap(),
+        );
+        assert!(
+            a == b,
+            "{f} differs between the sharded map and the whole one"
+        );
+    }
+    // The same command again keeps the merged sweep.
+    let again = run(&[], "cut");
+    again.assert_ok();
+    assert!(again.stdout.contains("kept (done before)"), "{again}");
+}

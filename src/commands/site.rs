@@ -7,8 +7,9 @@ use super::flags::{Threads, parse_count, parse_kernel, parse_seed};
 use super::print::print_out;
 use crate::output::format::Format;
 use crate::run::KernelChoice;
-use crate::run::site::SiteSettings;
+use crate::run::site::{Made, SiteSettings};
 use crate::site::estimate::Window;
+use crate::sweep::Shard;
 use std::path::PathBuf;
 
 /// Units of a shape model's coordinates.
@@ -65,6 +66,11 @@ pub struct SiteArgs {
     /// Format of the sweep and of the facets' table.
     #[arg(long, value_enum, default_value = "arrow")]
     pub format: Format,
+    /// Run only the K-th of N contiguous slices of the map's sweep, into the map's folder
+    /// (`sweep.shard-K-of-N.arrow`), and make no map; the command without --shard then
+    /// merges the shards and makes the map.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<Shard>,
     /// Worker threads (`--threads`).
     #[command(flatten)]
     pub threads: Threads,
@@ -124,6 +130,7 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         scenario: args.scenario.clone(),
         samples: args.samples,
         seed: args.seed,
+        shard: args.shard,
         window,
         out_dir: args.out_dir.clone(),
         format: args.format,
@@ -131,7 +138,20 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         quiet: args.quiet,
         kernel: args.kernel,
     };
-    let run = crate::run::site::run(&settings)?;
+    let run = match crate::run::site::run(&settings)? {
+        Made::Map(run) => run,
+        Made::Shard { shard, file, log } => {
+            return print_out(
+                "the map's log",
+                &format!(
+                    "shard {shard} of the map's sweep: {log} -> {}\nonce all {} shards are \
+                     done, the same command without --shard merges them and makes the map\n",
+                    file.display(),
+                    shard.count
+                ),
+            );
+        }
+    };
     let dir = &args.out_dir;
     let ext = match args.format {
         Format::Arrow => "arrow",

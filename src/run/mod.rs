@@ -12,6 +12,7 @@ mod memory;
 mod plan;
 mod signals;
 pub mod site;
+mod steps;
 pub mod study;
 pub mod trace;
 mod workers;

@@ -3,10 +3,10 @@
 //! map's folder (kept when done before, resumed when interrupted, run otherwise), and each
 //! facet's outcome shares from it (`site::estimate`).
 
-use super::execute::{RunOptions, execute, warn_untouched};
+use super::execute::{RunOptions, warn_untouched};
 use super::load::{KernelChoice, load_scenario, scenario_from_toml};
-use super::plan::SweepPlan;
 use super::signals::stop_on_signals;
+use super::steps::{Done, Kept, Names, Running, run_step, shard_file, step_of};
 use super::workers::worker_pool;
 use crate::output::FolderLock;
 use crate::output::format::Format;
@@ -16,6 +16,7 @@ use crate::scenario::Scenario;
 use crate::shape::{FacetGravity, Polyhedron, read_obj, unit_axis};
 use crate::site::estimate::{Counts, Window};
 use crate::site::{Body, Site, SiteFacet};
+use crate::sweep::Shard;
 use anyhow::{Context as _, anyhow, bail};
 use std::path::{Path, PathBuf};
 
@@ -42,6 +43,8 @@ pub struct SiteSettings {
     pub samples: u64,
     /// Overrides the scenario's seed.
     pub seed: Option<u64>,
+    /// The slice of the sweep to run, and no map (`--shard K/N`).
+    pub shard: Option<Shard>,
     /// The window a facet's shares count samples in.
     pub window: Window,
     /// The map's folder.
@@ -194,13 +197,8 @@ fn sweep_text(
     Ok((text, scenario))
 }
 
-/// The metadata value `key` of the sweep file `path`.
-fn stored(path: &Path, key: &str) -> anyhow::Result<Option<String>> {
-    Ok(SweepFile::open(path)?.metadata().get(key).cloned())
-}
-
-/// Runs the site's sweep into `file` unless it was done before (kept) or interrupted
-/// (resumed); returns what was done.
+/// Does the site's sweep, or its shard `args.shard`: kept when done before, merged from
+/// its shards, resumed when interrupted, run otherwise; returns what was done.
 fn sweep(
     args: &SiteSettings,
     pool: &rayon::ThreadPool,
@@ -208,19 +206,19 @@ fn sweep(
     text: &str,
     scenario: &Scenario,
 ) -> anyhow::Result<String> {
-    let samples = args.samples.to_string();
-    let other = |path: &Path| {
-        anyhow!(
-            "{} is not this map's sweep (another body, lander, seed or sample count): remove \
-             it, or give the map another --out-dir",
-            path.display()
-        )
+    let kept = Kept {
+        text,
+        scenario,
+        file,
+        samples: args.samples,
+        names: Names {
+            whose: "this map's sweep".into(),
+            owner: "map",
+            sweep: "the map's sweep".into(),
+            sweep_long: "the map's sweep".into(),
+        },
     };
-    let same = |path: &Path| -> anyhow::Result<bool> {
-        Ok(stored(path, "touchdown.scenario")?.as_deref() == Some(text)
-            && stored(path, "touchdown.samples")?.as_deref() == Some(samples.as_str()))
-    };
-    let interrupted = crate::output::interrupted_path(file);
+    let step = step_of(&kept, args.shard)?;
     let stop = stop_on_signals()?;
     let options = RunOptions {
         pool,
@@ -231,49 +229,31 @@ fn sweep(
         keep: false,
         counter: None,
     };
-    let continue_with = "the same touchdown site command again".to_string();
-    if file.exists() {
-        return if same(file)? {
-            Ok("kept (done before)".into())
-        } else {
-            Err(other(file))
-        };
-    }
-    let mut plan = if interrupted.exists() {
-        if !same(&interrupted)? {
-            return Err(other(&interrupted));
-        }
-        SweepPlan::resuming(file, None, args.kernel)?
-    } else {
-        crate::output::check_output_path(file)?;
-        SweepPlan {
-            scenario: scenario.clone(),
-            text: text.to_string(),
-            samples: args.samples,
-            shard: None,
-            format: args.format,
-            out: Some(file.to_path_buf()),
-            kernel: kernels::isa::KernelKind {
-                isa: args.kernel.isa()?,
-                precision: scenario.simulation.precision,
-            },
-            resume: None,
-            continue_with: String::new(),
-        }
+    let running = Running {
+        shard: args.shard,
+        format: args.format,
+        kernel: args.kernel,
+        continue_with: "the same touchdown site command again",
+        options: &options,
     };
-    plan.continue_with = continue_with;
-    let done = execute(&plan, &options)?;
-    warn_untouched(&done, &plan.scenario, "in the site's sweep, ");
-    Ok(format!(
-        "{} samples in {:.1} s{}",
-        done.computed,
-        done.wall_s,
-        if done.rows > done.computed {
-            format!(", {} kept", done.rows - done.computed)
-        } else {
-            String::new()
-        }
-    ))
+    let ran = |done: &super::execute::Executed| {
+        warn_untouched(done, scenario, "in the site's sweep, ");
+        format!(
+            "{} samples in {:.1} s{}",
+            done.computed,
+            done.wall_s,
+            if done.rows > done.computed {
+                format!(", {} kept", done.rows - done.computed)
+            } else {
+                String::new()
+            }
+        )
+    };
+    Ok(match run_step(&kept, step, &running)? {
+        Done::Kept => "kept (done before)".into(),
+        Done::Merged { shards, rows } => format!("merged from {shards} shards ({rows} samples)"),
+        Done::Resumed(done) | Done::Ran(done) => ran(&done),
+    })
 }
 
 /// The sweep's samples counted for the facets' windows.
@@ -300,8 +280,24 @@ fn counts(
     ))
 }
 
-/// Makes the map: the body, its sweep (run, resumed or kept) and each facet's shares.
-pub fn run(args: &SiteSettings) -> anyhow::Result<SiteRun> {
+/// What a site's run made.
+pub enum Made {
+    /// The map.
+    Map(Box<SiteRun>),
+    /// One shard of its sweep (`--shard K/N`), and no map yet.
+    Shard {
+        /// The slice run.
+        shard: Shard,
+        /// The shard's file, in the map's folder.
+        file: PathBuf,
+        /// What was done with it.
+        log: String,
+    },
+}
+
+/// Makes the map: the body, its sweep (run, resumed, merged from its shards or kept) and
+/// each facet's shares; or with `--shard K/N`, the body and that slice of its sweep.
+pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
     let dir = &args.out_dir;
     if dir.exists() && !dir.is_dir() {
         bail!("--out-dir {}: that is a file, not a folder", dir.display());
@@ -315,13 +311,21 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<SiteRun> {
     let (text, scenario) = sweep_text(args, &base_text, slopes, gravities)?;
     std::fs::create_dir_all(dir)
         .map_err(|e| anyhow!("cannot make the map's folder {}: {e}", dir.display()))?;
-    let lock = FolderLock::acquire(dir, false)?;
+    // Shared by the shards of one map, which a cluster runs side by side.
+    let lock = FolderLock::acquire(dir, args.shard.is_some())?;
     let ext = match args.format {
         Format::Arrow => "arrow",
         Format::Parquet => "parquet",
     };
     let sweep_file = dir.join(format!("sweep.{ext}"));
     let log = sweep(args, &pool, &sweep_file, &text, &scenario)?;
+    if let Some(shard) = args.shard {
+        return Ok(Made::Shard {
+            shard,
+            file: shard_file(&sweep_file, shard),
+            log,
+        });
+    }
     let counts = counts(&sweep_file, slopes, gravities, args.window)?;
     let facets = gravity
         .iter()
@@ -349,7 +353,7 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<SiteRun> {
             }
         })
         .collect();
-    Ok(SiteRun {
+    Ok(Made::Map(Box::new(SiteRun {
         site: Site { body, facets },
         sweep_file,
         sweep_text: text,
@@ -358,5 +362,5 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<SiteRun> {
         log,
         gravity_s,
         lock,
-    })
+    })))
 }

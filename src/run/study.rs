@@ -8,10 +8,10 @@
 //! K/N` it runs the K-th slice of every value, and the command without `--shard` merges the
 //! N shard files of each value (`touchdown merge`'s way) before it writes the table.
 
-use super::execute::{RunOptions, execute, warn_untouched};
+use super::execute::{RunOptions, warn_untouched};
 use super::load::{KernelChoice, load_scenario, scenario_from_toml};
-use super::plan::SweepPlan;
 use super::signals::stop_on_signals;
+use super::steps::{self, Done, Kept, Names, Running, Step, shard_file, step_of};
 use super::workers::worker_pool;
 use crate::output::format::Format;
 use crate::reference::Outcome;
@@ -21,7 +21,7 @@ use crate::study::Vary;
 use crate::sweep::Shard;
 use anyhow::{Context as _, anyhow, bail};
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The settings of a study (`touchdown study`'s flags).
 #[derive(Debug, Clone)]
@@ -111,157 +111,25 @@ pub struct Point {
 }
 
 impl Point {
-    /// The file of shard `shard` of this value's sweep.
-    fn shard_file(&self, shard: Shard) -> PathBuf {
-        let stem = self.file.file_stem().unwrap_or_default().to_string_lossy();
-        let ext = self.file.extension().unwrap_or_default().to_string_lossy();
-        self.file.with_file_name(format!(
-            "{stem}.shard-{}-of-{}.{ext}",
-            shard.index, shard.count
-        ))
-    }
-}
-
-/// What a study run does with one value's file.
-enum Step {
-    /// It is there, complete: kept.
-    Kept,
-    /// Its N shard files are there: merged.
-    Merge(Vec<PathBuf>),
-    /// An interrupted run of it is there: finished.
-    Resume,
-    /// Nothing of it yet: run.
-    Run,
-}
-
-/// Why the sweep file `path` (complete or interrupted, with `meta` as its metadata) is not
-/// the one this study wants at `point`, if it is not.
-fn differs(
-    meta: &std::collections::HashMap<String, String>,
-    point: &Point,
-    samples: u64,
-    shard: Option<Shard>,
-) -> Option<&'static str> {
-    let get = |k: &str| meta.get(k).map(String::as_str);
-    if get("touchdown.seed") != Some(point.scenario.seed.to_string().as_str()) {
-        return Some("its seed");
-    }
-    if get("touchdown.samples") != Some(samples.to_string().as_str()) {
-        return Some("its sample count");
-    }
-    let file_shard = get(crate::output::sweep::SHARD_KEYS[0]);
-    if file_shard != shard.map(|s| s.to_string()).as_deref() {
-        return Some("its shard");
-    }
-    if get("touchdown.scenario") != Some(point.text.as_str()) {
-        return Some("its scenario");
-    }
-    None
-}
-
-/// The metadata of the sweep file `path`.
-fn metadata_of(path: &Path) -> anyhow::Result<std::collections::HashMap<String, String>> {
-    let file = crate::output::sweep::SweepFile::open(path)?;
-    Ok(file
-        .metadata()
-        .iter()
-        .map(|(k, v)| (k.clone(), v.clone()))
-        .collect())
-}
-
-/// What to do with `point`'s sweep (or its shard `shard`) given what the folder holds.
-fn step_of(point: &Point, samples: u64, shard: Option<Shard>) -> anyhow::Result<Step> {
-    let file = shard.map_or_else(|| point.file.clone(), |s| point.shard_file(s));
-    let other = |path: &Path, what: &str| {
-        anyhow!(
-            "{} is not this study's sweep at {} (it differs in {what}): remove it, or give \
-             the study another --out-dir",
-            path.display(),
-            point.value
-        )
-    };
-    if file.exists() {
-        let meta = metadata_of(&file)?;
-        return match differs(&meta, point, samples, shard) {
-            None => Ok(Step::Kept),
-            Some(what) => Err(other(&file, what)),
-        };
-    }
-    let interrupted = crate::output::interrupted_path(&file);
-    if interrupted.exists() {
-        let meta = metadata_of(&interrupted)?;
-        return match differs(&meta, point, samples, shard) {
-            None => Ok(Step::Resume),
-            Some(what) => Err(other(&interrupted, what)),
-        };
-    }
-    let dir = point.file.parent().unwrap_or(Path::new("."));
-    if shard.is_some() || !dir.is_dir() {
-        return Ok(Step::Run);
-    }
-    // Shard files of this value, complete ones, by shard count.
-    let mut counts = std::collections::BTreeMap::<u64, Vec<u64>>::new();
-    let stem = point.file.file_stem().unwrap_or_default().to_string_lossy();
-    let ext = point.file.extension().unwrap_or_default().to_string_lossy();
-    for entry in std::fs::read_dir(dir).with_context(|| format!("cannot read {}", dir.display()))? {
-        let name = entry?.file_name().to_string_lossy().into_owned();
-        let shard = name
-            .strip_prefix(&format!("{stem}.shard-"))
-            .and_then(|r| r.strip_suffix(&format!(".{ext}")))
-            .and_then(|r| r.split_once("-of-"))
-            .and_then(|(k, n)| Some((k.parse::<u64>().ok()?, n.parse::<u64>().ok()?)));
-        if let Some((k, n)) = shard {
-            counts.entry(n).or_default().push(k);
+    /// This value's sweep as its folder keeps it.
+    fn kept(&self, samples: u64) -> Kept<'_> {
+        Kept {
+            text: &self.text,
+            scenario: &self.scenario,
+            file: &self.file,
+            samples,
+            names: Names {
+                whose: format!("this study's sweep at {}", self.value),
+                owner: "study",
+                sweep: format!("the sweep at {}", self.value),
+                sweep_long: format!(
+                    "the sweep at {} = {}",
+                    self.text.lines().next().unwrap_or_default(),
+                    self.value
+                ),
+            },
         }
     }
-    let Some((&n, have)) = counts.iter().next_back() else {
-        return Ok(Step::Run);
-    };
-    if counts.len() > 1 {
-        bail!(
-            "{} holds shards of the sweep at {} = {} cut {} ways: keep those of one --shard \
-             count",
-            dir.display(),
-            point.text.lines().next().unwrap_or_default(),
-            point.value,
-            counts
-                .keys()
-                .map(u64::to_string)
-                .collect::<Vec<_>>()
-                .join(" and ")
-        );
-    }
-    let missing: Vec<String> = (0..n)
-        .filter(|k| !have.contains(k))
-        .map(|k| format!("{k}/{n}"))
-        .collect();
-    if !missing.is_empty() {
-        bail!(
-            "the sweep at {} is sharded {n} ways and lacks shard{} {}: run {} with --shard, \
-             then this command again",
-            point.value,
-            if missing.len() == 1 { "" } else { "s" },
-            missing.join(", "),
-            if missing.len() == 1 { "it" } else { "them" }
-        );
-    }
-    let files: Vec<PathBuf> = (0..n)
-        .map(|k| point.shard_file(Shard { index: k, count: n }))
-        .collect();
-    for f in &files {
-        let meta = metadata_of(f)?;
-        let shard = Shard { index: 0, count: n };
-        // Shards share all but their index: compare with shard 0's key, index aside.
-        let mut meta = meta;
-        meta.insert(
-            crate::output::sweep::SHARD_KEYS[0].to_string(),
-            shard.to_string(),
-        );
-        if let Some(what) = differs(&meta, point, samples, Some(shard)) {
-            return Err(other(f, what));
-        }
-    }
-    Ok(Step::Merge(files))
 }
 
 /// What a study's runs leave: its values and their files, and a line per value.
@@ -318,7 +186,7 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
     super::folder::refuse_other_study(dir, &id, &files)?;
     let steps = points
         .iter()
-        .map(|p| step_of(p, samples, args.shard))
+        .map(|p| step_of(&p.kept(samples), args.shard))
         .collect::<anyhow::Result<Vec<Step>>>()?;
 
     let pool = worker_pool(args.threads)?;
@@ -356,8 +224,8 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
     for (p, step) in points.iter().zip(steps) {
         let file = args
             .shard
-            .map_or_else(|| p.file.clone(), |s| p.shard_file(s));
-        let line = run_step(args, p, step, &file, samples, &options)?;
+            .map_or_else(|| p.file.clone(), |s| shard_file(&p.file, s));
+        let line = run_step(args, p, step, samples, &options)?;
         let _ = writeln!(
             log,
             "{} = {}: {line} -> {}",
@@ -410,28 +278,27 @@ fn points(args: &StudySettings, parsed: &toml::Table) -> anyhow::Result<Vec<Poin
     Ok(points)
 }
 
-/// Does `step` for value `p` (its file, or its shard's, `file`); returns what it did.
+/// Does `step` for value `p` (its file, or its shard's); returns what it did.
 fn run_step(
     args: &StudySettings,
     p: &Point,
     step: Step,
-    file: &Path,
     samples: u64,
     options: &RunOptions<'_>,
 ) -> anyhow::Result<String> {
-    let continue_with = "the same touchdown study command again".to_string();
     let at = format!("at {} = {}, ", args.vary.key, p.value);
-    Ok(match step {
-        Step::Kept => "kept (done before)".to_string(),
-        Step::Merge(files) => {
-            let m = crate::output::merge::merge(&files, file, args.format)?;
-            format!("merged from {} shards ({} samples)", m.shards, m.rows)
-        }
-        Step::Resume => {
-            let mut plan = SweepPlan::resuming(file, None, args.kernel)?;
-            plan.continue_with = continue_with;
-            let done = execute(&plan, options)?;
-            warn_untouched(&done, &plan.scenario, &at);
+    let running = Running {
+        shard: args.shard,
+        format: args.format,
+        kernel: args.kernel,
+        continue_with: "the same touchdown study command again",
+        options,
+    };
+    Ok(match steps::run_step(&p.kept(samples), step, &running)? {
+        Done::Kept => "kept (done before)".to_string(),
+        Done::Merged { shards, rows } => format!("merged from {shards} shards ({rows} samples)"),
+        Done::Resumed(done) => {
+            warn_untouched(&done, &p.scenario, &at);
             format!(
                 "resumed: {} samples in {:.1} s, {} kept",
                 done.computed,
@@ -439,25 +306,8 @@ fn run_step(
                 done.rows - done.computed
             )
         }
-        Step::Run => {
-            crate::output::check_output_path(file)?;
-            let kernel = kernels::isa::KernelKind {
-                isa: args.kernel.isa()?,
-                precision: p.scenario.simulation.precision,
-            };
-            let plan = SweepPlan {
-                scenario: p.scenario.clone(),
-                text: p.text.clone(),
-                samples,
-                shard: args.shard,
-                format: args.format,
-                out: Some(file.to_path_buf()),
-                kernel,
-                resume: None,
-                continue_with,
-            };
-            let done = execute(&plan, options)?;
-            warn_untouched(&done, &plan.scenario, &at);
+        Done::Ran(done) => {
+            warn_untouched(&done, &p.scenario, &at);
             format!(
                 "{} samples in {:.1} s, {:.1} % stable",
                 done.computed,
@@ -466,36 +316,4 @@ fn run_step(
             )
         }
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_value_goes_where_its_key_says_and_the_scenario_checks_it() {
-        let base: toml::Table = "seed = 3\n[lander]\nlegs = 4\n".parse().unwrap();
-        let (text, s) = with_value(&base, "lander.footpad_radius_m", 0.75).unwrap();
-        let tip = s.lander.tips_m()[0];
-        assert!((tip[0].hypot(tip[1]) - 0.75).abs() < 1e-12, "{tip:?}");
-        assert_eq!(s.seed, 3);
-        assert!(text.starts_with("# touchdown study: lander.footpad_radius_m = 0.75\n"));
-        // A whole number where the scenario wants one.
-        let (_, s) = with_value(&base, "lander.legs", 3.0).unwrap();
-        assert_eq!(s.lander.tips_m().len(), 3);
-        // A key the scenario does not have, and a value it refuses: its reader's message.
-        let e = with_value(&base, "lander.footpad_radius_mm", 0.5).unwrap_err();
-        assert!(format!("{e:#}").contains("footpad_radius_mm"), "{e:#}");
-        let e = with_value(&base, "lander.footpad_radius_m", -1.0).unwrap_err();
-        assert!(
-            format!("{e:#}").contains("at lander.footpad_radius_m = -1"),
-            "{e:#}"
-        );
-        let e = with_value(&base, "lander.legs", 3.5).unwrap_err();
-        assert!(format!("{e:#}").contains("whole number"), "{e:#}");
-        let e = with_value(&base, "lander", 1.0).unwrap_err();
-        assert!(format!("{e:#}").contains("table of settings"), "{e:#}");
-        let e = with_value(&base, "seed.x", 1.0).unwrap_err();
-        assert!(format!("{e:#}").contains("not a table of keys"), "{e:#}");
-    }
 }
