@@ -2,6 +2,7 @@
 
 mod agreement;
 mod animate;
+mod bodies;
 mod boundary;
 mod boundary_input;
 mod bounded_memory;
