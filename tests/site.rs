@@ -1,10 +1,11 @@
 //! `touchdown site` end to end: a spinning sphere's map against the closed form of its
-//! gravity and slopes, its facets' P(stable) against direct sweeps at their own slope and
-//! gravity, and bad shapes and flags refused with exit code 2.
+//! gravity and slopes (and its roughness against the shape layer's), its facets' P(stable)
+//! against direct sweeps at their own slope and gravity, and bad shapes and flags refused
+//! with exit code 2.
 
 use crate::common::{TempDir, arrow_column as column, touchdown};
 use crate::shape::icosphere;
-use touchdown::shape::Mesh;
+use touchdown::shape::{Mesh, roughness_deg};
 
 /// The mesh as OBJ text, in metres.
 fn obj(mesh: &Mesh) -> String {
@@ -16,6 +17,18 @@ fn obj(mesh: &Mesh) -> String {
         s += &format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
     }
     s
+}
+
+/// The names of the Arrow file's columns, in order.
+fn column_names(path: &std::path::Path) -> Vec<String> {
+    let file = std::fs::File::open(path).expect("open the table");
+    let reader = arrow_ipc::reader::FileReader::try_new(file, None).expect("an Arrow file");
+    reader
+        .schema()
+        .fields()
+        .iter()
+        .map(|f| f.name().clone())
+        .collect()
 }
 
 /// A sphere of radius 30 km and density 2000 kg/m^3 (surface gravity 0.0168 m/s^2, the
@@ -112,6 +125,42 @@ fn a_spinning_spheres_map_matches_its_closed_form_and_direct_sweeps() {
             g[i]
         );
     }
+    // The roughness is the shape layer's, facet by facet: the OBJ text writes each
+    // coordinate in the shortest form that reads back the same, in metres, so the map's mesh
+    // is the test's to the bit and the values agree to their rounding (1e-12 deg allows for
+    // none). And it sits next to the slope in the table.
+    let rough = get("roughness_deg");
+    let expected = roughness_deg(&icosphere(RADIUS_M, 3).check().expect("a sound mesh"));
+    assert_eq!(rough.len(), expected.len());
+    for (i, (r, e)) in rough.iter().zip(&expected).enumerate() {
+        assert!(
+            (r - e).abs() <= 1e-12,
+            "facet {i}: roughness {r} against {e}"
+        );
+    }
+    let names = column_names(&table);
+    let at = |name: &str| names.iter().position(|n| n == name);
+    assert_eq!(
+        at("roughness_deg"),
+        at("slope_deg").map(|k| k + 1),
+        "{names:?}"
+    );
+    // The summary's line: the mean by area and the largest, as the table has them.
+    let area = get("area_m2");
+    let total: f64 = area.iter().sum();
+    let mean = rough.iter().zip(&area).map(|(r, a)| r * a).sum::<f64>() / total;
+    let roughest = rough.iter().copied().fold(0.0, f64::max);
+    let summary = std::fs::read_to_string(dir.join("map/site.md")).unwrap();
+    let line = summary
+        .lines()
+        .find(|l| l.starts_with("| roughness |"))
+        .unwrap_or_else(|| panic!("no roughness line in {summary}"));
+    assert!(
+        line.starts_with(&format!(
+            "| roughness | mean {mean:.2} deg by area, median "
+        )) && line.contains(&format!(", roughest {roughest:.2} ")),
+        "{line}"
+    );
     // Three facets' P(stable) against a direct sweep at their own slope and gravity (3,000
     // samples each, the lander otherwise drawn as in the map): the 95 % intervals must
     // overlap. The map's share averages P over +-1 deg and +-5 % of gravity; P changes by

@@ -144,6 +144,8 @@ fn facet(i: usize, vertices: &[[f64; 3]], t: [u32; 3], band: f64) -> SiteFacet {
         effective_gravity_m_s2: centroid.map(|x| -g * x / r),
         gravity_m_s2: g,
         slope_deg: slope(band),
+        // Any number that differs from facet to facet: the page shows it as it is given.
+        roughness_deg: 0.1 + 0.0123 * i as f64,
         samples: 1000 + i as u64,
         shares,
     }
@@ -382,6 +384,7 @@ fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
     let (ids, samples) = (column(&data, "facet"), column(&data, "samples"));
     let [lat, lon, slope, g] =
         ["latitude_deg", "longitude_deg", "slope_deg", "gravity_m_s2"].map(|k| column(&data, k));
+    let rough = column(&data, "roughness_deg");
     let shares = ["stable", "tipped", "sliding", "bouncing"].map(|k| column(&data, k));
     let (low, high) = (column(&data, "stable_low"), column(&data, "stable_high"));
     assert_eq!(ids.len(), site.facets.len());
@@ -390,6 +393,7 @@ fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
         assert_eq!(samples[k], f.samples as f64);
         assert!(rounded(lat[k], f.latitude_deg, 4) && rounded(lon[k], f.longitude_deg, 4));
         assert!(rounded(slope[k], f.slope_deg, 4) && rounded(g[k], f.gravity_m_s2, 4));
+        assert!(rounded(rough[k], f.roughness_deg, 4), "facet {k} roughness");
         match f.shares {
             Some(s) => {
                 for (o, column) in shares.iter().enumerate() {
@@ -585,6 +589,7 @@ fn the_page_draws_the_body_in_a_browser_and_names_the_facet_under_the_pointer() 
     for expected in [
         format!("facet {}\n", f.facet),
         format!("slope {}°", f.slope_deg),
+        format!("roughness {}°", round4(f.roughness_deg)),
         format!("P(stable) {p} [{low}, {high}]"),
         format!("samples {}", f.samples),
     ] {

@@ -13,7 +13,7 @@ use crate::output::format::Format;
 use crate::output::sweep::SweepFile;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
-use crate::shape::{FacetGravity, Polyhedron, read_obj, unit_axis};
+use crate::shape::{FacetGravity, Polyhedron, read_obj, roughness_deg, unit_axis};
 use crate::site::estimate::{Counts, Window};
 use crate::site::{Body, Site, SiteFacet};
 use crate::sweep::Shard;
@@ -79,11 +79,12 @@ pub struct SiteRun {
     pub lock: FolderLock,
 }
 
-/// Reads and checks the shape model, and computes every facet's gravity and slope on `pool`.
+/// Reads and checks the shape model, and computes every facet's gravity and slope on `pool`
+/// and its roughness.
 fn body_of(
     args: &SiteSettings,
     pool: &rayon::ThreadPool,
-) -> anyhow::Result<(Body, Vec<FacetGravity>)> {
+) -> anyhow::Result<(Body, Vec<FacetGravity>, Vec<f64>)> {
     let mesh = read_obj(&args.shape, args.metres_per_unit)?
         .check()
         .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
@@ -93,6 +94,7 @@ fn body_of(
     let omega = 2.0 * std::f64::consts::PI / (args.spin_period_h * 3600.0);
     let facets = pool.install(|| crate::shape::facets(&poly, axis, omega));
     let mesh = poly.mesh();
+    let roughness = roughness_deg(mesh);
     let body = Body {
         name: args
             .shape
@@ -112,7 +114,7 @@ fn body_of(
         volume_m3: mesh.volume_m3(),
         area_m2: mesh.surface_area_m2(),
     };
-    Ok((body, facets))
+    Ok((body, facets, roughness))
 }
 
 /// The ranges the sweep draws: slopes from 0 to the steepest facet's (below
@@ -305,7 +307,7 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
     let (_, base_text) = load_scenario(args.scenario.as_ref(), args.seed)?;
     let pool = worker_pool(args.threads)?;
     let started = std::time::Instant::now();
-    let (body, gravity) = body_of(args, &pool)?;
+    let (body, gravity, roughness) = body_of(args, &pool)?;
     let gravity_s = started.elapsed().as_secs_f64();
     let (slopes, gravities) = ranges(&gravity, args.window)?;
     let (text, scenario) = sweep_text(args, &base_text, slopes, gravities)?;
@@ -329,8 +331,9 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
     let counts = counts(&sweep_file, slopes, gravities, args.window)?;
     let facets = gravity
         .iter()
+        .zip(&roughness)
         .enumerate()
-        .map(|(i, f)| {
+        .map(|(i, (f, &rough))| {
             let standing = f.slope_deg < SLOPE_LIMIT_DEG
                 && counts.covers(f.slope_deg, f.effective_magnitude_m_s2);
             let (samples, shares) = if standing {
@@ -348,6 +351,7 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
                 effective_gravity_m_s2: f.effective_m_s2,
                 gravity_m_s2: f.effective_magnitude_m_s2,
                 slope_deg: f.slope_deg,
+                roughness_deg: rough,
                 samples,
                 shares,
             }

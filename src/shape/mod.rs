@@ -2,8 +2,8 @@
 //! (obj.rs), the mesh checked to be a closed, consistently oriented, outward-facing surface
 //! with its geometry (mesh.rs), the constant-density polyhedron's gravity in closed form
 //! (gravity.rs: Werner and Scheeres 1997), and per facet the spin's centrifugal
-//! acceleration, the effective gravity and the slope (facets.rs). docs/MODEL.md, "The shape
-//! model and its gravity".
+//! acceleration, the effective gravity and the slope (facets.rs), and each facet's roughness
+//! against its neighbours (roughness.rs). docs/MODEL.md, "The shape model and its gravity".
 //!
 //! ```no_run
 //! # use touchdown::shape::*;
@@ -20,6 +20,7 @@ mod facets;
 mod gravity;
 mod mesh;
 mod obj;
+mod roughness;
 mod vec3;
 
 pub use error::ShapeError;
@@ -27,3 +28,4 @@ pub use facets::{FacetGravity, centrifugal, facet_gravity, facets, slope_deg, un
 pub use gravity::{Field, G, Polyhedron};
 pub use mesh::{CheckedMesh, DEGENERATE_AREA, Edge, FacetGeometry, MAX_FACETS, MAX_VERTICES, Mesh};
 pub use obj::{MAX_LINE_BYTES, parse_obj, read_obj};
+pub use roughness::roughness_deg;

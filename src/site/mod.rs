@@ -56,6 +56,10 @@ pub struct SiteFacet {
     /// The local slope: the angle between the outward normal and minus the effective
     /// gravity, deg (above 90 where the effective gravity points off the ground).
     pub slope_deg: f64,
+    /// The root mean square of the angles between its outward normal and its three
+    /// edge-neighbours' normals, deg (`crate::shape::roughness_deg`): the relief from facet
+    /// to facet the shape model resolves. Reported only: the sweep does not use it.
+    pub roughness_deg: f64,
     /// The samples of the sweep that the facet's shares count.
     pub samples: u64,
     /// The shares of `SHARE_OUTCOMES`; `None` where the facet's slope lies outside any

@@ -1,5 +1,5 @@
-//! The Markdown summary of a landing-site map: the body (size, gravity, slopes) and how
-//! landings end over its surface, by area.
+//! The Markdown summary of a landing-site map: the body (size, gravity, slopes,
+//! roughness) and how landings end over its surface, by area.
 
 use super::estimate::Window;
 use super::{SAFE_P_STABLE, SHARE_OUTCOMES, Site};
@@ -55,6 +55,9 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
     let mut slopes: Vec<(f64, f64)> = f.iter().map(|x| (x.slope_deg, x.area_m2)).collect();
     let median = area_quantile(&mut slopes, 0.5);
     let steepest = f.iter().map(|x| x.slope_deg).fold(0.0, f64::max);
+    let mut rough: Vec<(f64, f64)> = f.iter().map(|x| (x.roughness_deg, x.area_m2)).collect();
+    let rough_median = area_quantile(&mut rough, 0.5);
+    let roughest = f.iter().map(|x| x.roughness_deg).fold(0.0, f64::max);
     let mut s = String::new();
     let _ = writeln!(s, "# Landing sites on {}\n", b.name);
     let _ = writeln!(s, "| the body | |\n|---|---|");
@@ -89,6 +92,11 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
         share(&|x| x.slope_deg < 10.0),
         share(&|x| x.slope_deg < 20.0),
         share(&|x| x.slope_deg < 30.0),
+    );
+    let _ = writeln!(
+        s,
+        "| roughness | mean {:.2} deg by area, median {rough_median:.2}, roughest {roughest:.2} (the RMS angle between a facet's normal and its three neighbours': the relief the model resolves, not simulated) |",
+        mean(&|x| x.roughness_deg),
     );
     let _ = writeln!(
         s,

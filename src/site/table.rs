@@ -1,6 +1,6 @@
-//! The facets' table of a landing-site map: a row per facet (where it is, its ground and
-//! gravity, its outcome shares with their intervals), as Arrow or Parquet, with the body
-//! and the method in the schema's metadata.
+//! The facets' table of a landing-site map: a row per facet (where it is, its ground,
+//! roughness and gravity, its outcome shares with their intervals), as Arrow or Parquet,
+//! with the body and the method in the schema's metadata.
 
 use super::estimate::Window;
 use super::{SHARE_OUTCOMES, Site, SiteFacet};
@@ -167,6 +167,17 @@ fn columns(facets: &[SiteFacet]) -> (Vec<Field>, Vec<ArrayRef>) {
             "the angle between the outward normal and minus the effective gravity",
         ),
         facets.iter().map(|f| Some(f.slope_deg)),
+    );
+    float(
+        fs,
+        cs,
+        (
+            "roughness_deg",
+            "deg",
+            "the RMS angle between the outward normal and its three edge-neighbours' normals \
+             (the shape model's facet-to-facet relief; reported, not simulated)",
+        ),
+        facets.iter().map(|f| Some(f.roughness_deg)),
     );
     fields.push(field(
         "samples",

@@ -5,8 +5,8 @@
 //!
 //! The page is `site.html` with the site spliced in as JSON: nothing is fetched, so it opens
 //! from a mail attachment or a folder with no network. The numbers are rounded to what the
-//! page shows or draws (6 significant digits for coordinates, 4 for shares, slopes and
-//! gravity), which keeps the page of a 12,000-facet body near 1.3 MB.
+//! page shows or draws (6 significant digits for coordinates, 4 for shares, slopes,
+//! roughness and gravity), which keeps the page of a 12,000-facet body near 1.4 MB.
 
 use super::text;
 use crate::output::{AtomicFile, cannot_write};
@@ -119,10 +119,11 @@ fn facets(o: &mut String, facets: &[SiteFacet]) {
     }
     o.push(']');
     // The numbers, then the shares: P(stable) with its interval, the other outcomes' P.
-    let columns: [(&str, Column); 10] = [
+    let columns: [(&str, Column); 11] = [
         ("latitude_deg", |f| f.latitude_deg),
         ("longitude_deg", |f| f.longitude_deg),
         ("slope_deg", |f| f.slope_deg),
+        ("roughness_deg", |f| f.roughness_deg),
         ("gravity_m_s2", |f| f.gravity_m_s2),
         ("stable", |f| f.shares.map_or(f64::NAN, |s| s[0].p)),
         ("stable_low", |f| f.shares.map_or(f64::NAN, |s| s[0].low)),
