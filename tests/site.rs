@@ -289,6 +289,18 @@ fn bad_shapes_and_flags_are_refused_naming_them() {
             vec!["--gravity-window", "1"],
             "--gravity-window",
         ),
+        // Windows so fine that the grid counting the samples would outgrow any machine:
+        // refused before the sweep (which would run 1e6 samples here), not an abort after.
+        (
+            "a gravity window too fine to count in",
+            vec!["--gravity-window", "1e-9"],
+            "--gravity-window 0.000000001",
+        ),
+        (
+            "a slope window too fine to count in",
+            vec!["--slope-window", "1e-12"],
+            "--slope-window 0.000000000001 and --gravity-window",
+        ),
     ] {
         let mut args = vec!["site", "body.obj", "--out-dir", "out", "--quiet"];
         // The body's flags where the case is not about them.

@@ -14,7 +14,7 @@ use crate::output::sweep::SweepFile;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
 use crate::shape::{FacetGravity, Polyhedron, read_obj, roughness_deg, unit_axis};
-use crate::site::estimate::{Counts, Window};
+use crate::site::estimate::{Counts, Window, grid_bytes};
 use crate::site::{Body, Site, SiteFacet};
 use crate::sweep::Shard;
 use anyhow::{Context as _, anyhow, bail};
@@ -266,20 +266,64 @@ fn counts(
     window: Window,
 ) -> anyhow::Result<Counts> {
     let mut f = SweepFile::open(file)?;
-    let mut samples: Vec<(f64, f64, Outcome)> = Vec::new();
-    for b in f.batches() {
-        let b = b?;
-        let (slope, gravity) = (b.f64s("slope_deg")?, b.f64s("gravity_m_s2")?);
-        for (i, o) in b.outcomes()?.into_iter().enumerate() {
-            samples.push((slope.value(i), gravity.value(i), o));
+    let mut batches = f.batches();
+    // One batch's samples at a time: the counts keep none of them.
+    let mut batch = Vec::new().into_iter();
+    let mut failed = None;
+    let samples = std::iter::from_fn(|| {
+        loop {
+            if let Some(sample) = batch.next() {
+                return Some(sample);
+            }
+            let read = batches.next()?.and_then(|b| {
+                let (slope, gravity) = (b.f64s("slope_deg")?, b.f64s("gravity_m_s2")?);
+                Ok(b.outcomes()?
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, o)| (slope.value(i), gravity.value(i), o))
+                    .collect::<Vec<(f64, f64, Outcome)>>())
+            });
+            match read {
+                Ok(v) => batch = v.into_iter(),
+                Err(e) => {
+                    failed = Some(e);
+                    return None;
+                }
+            }
         }
+    });
+    let counts = Counts::new(samples, slopes.1, gravities, window);
+    match failed {
+        Some(e) => Err(e),
+        None => Ok(counts),
     }
-    Ok(Counts::new(
-        samples.into_iter(),
-        slopes.1,
-        gravities,
-        window,
-    ))
+}
+
+/// Refuses windows so fine that the counts' grid would not fit the machine, before the
+/// sweep runs.
+fn check_grid(
+    args: &SiteSettings,
+    slopes: (f64, f64),
+    gravities: (f64, f64),
+) -> anyhow::Result<()> {
+    let bytes = grid_bytes(slopes.1, gravities, args.window);
+    // Beyond any machine (and beyond what a grid's index can count): refused outright.
+    if bytes.is_nan() || bytes >= 2f64.powi(50) {
+        bail!(
+            "--slope-window {} and --gravity-window {}: windows this fine would need a grid of \
+             {} of memory to count the sweep's samples in: widen them",
+            args.window.slope_deg,
+            args.window.gravity_fraction,
+            super::memory::shown_bytes(bytes.min(u64::MAX as f64) as u64)
+        );
+    }
+    super::memory::check_fits(bytes as u64, || {
+        format!(
+            "--slope-window {} and --gravity-window {}: the grid that counts the sweep's \
+             samples in windows this fine",
+            args.window.slope_deg, args.window.gravity_fraction
+        )
+    })
 }
 
 /// What a site's run made.
@@ -310,6 +354,7 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
     let (body, gravity, roughness) = body_of(args, &pool)?;
     let gravity_s = started.elapsed().as_secs_f64();
     let (slopes, gravities) = ranges(&gravity, args.window)?;
+    check_grid(args, slopes, gravities)?;
     let (text, scenario) = sweep_text(args, &base_text, slopes, gravities)?;
     std::fs::create_dir_all(dir)
         .map_err(|e| anyhow!("cannot make the map's folder {}: {e}", dir.display()))?;

@@ -54,10 +54,35 @@ pub struct Counts {
     tables: Vec<Vec<u64>>,
 }
 
+/// The grid's cells for these ranges and window, `(columns in slope, rows in gravity)`, as
+/// `f64` (a window fine enough makes more than any machine holds), and the cells' sizes.
+fn grid(
+    slope_max_deg: f64,
+    (gravity_min, gravity_max): (f64, f64),
+    window: Window,
+) -> ((f64, f64), (f64, f64)) {
+    let slope_cell = window.slope_deg / GRID_PER_WINDOW;
+    let gravity_cell = gravity_min * window.gravity_fraction / GRID_PER_WINDOW;
+    let columns = (slope_max_deg / slope_cell).ceil().max(1.0);
+    let rows = ((gravity_max - gravity_min) / gravity_cell).ceil().max(1.0);
+    ((columns, rows), (slope_cell, gravity_cell))
+}
+
+/// Bytes the counts of a sweep over these ranges hold on the grid of `window` (one
+/// summed-area table of 8-byte counts per outcome and one of all samples), whatever the
+/// samples: a run refuses a window too fine for the machine before its sweep. `f64`: it
+/// may exceed any machine's memory.
+#[must_use]
+pub fn grid_bytes(slope_max_deg: f64, gravities: (f64, f64), window: Window) -> f64 {
+    let ((columns, rows), _) = grid(slope_max_deg, gravities, window);
+    (columns + 1.0) * (rows + 1.0) * (SHARE_OUTCOMES.len() + 1) as f64 * 8.0
+}
+
 impl Counts {
     /// Counts `samples` (slope, deg; gravity, m/s^2; outcome) of a sweep that drew slopes on
     /// `[0, slope_max_deg]` and gravities on `[gravity_min, gravity_max]` uniformly, on a
-    /// grid for `window`. Samples outside the ranges are not counted.
+    /// grid for `window`, as they come (none is kept): it holds [`grid_bytes`] whatever
+    /// their number. Samples outside the ranges are not counted.
     #[must_use]
     pub fn new(
         samples: impl Iterator<Item = (f64, f64, Outcome)>,
@@ -65,11 +90,12 @@ impl Counts {
         (gravity_min, gravity_max): (f64, f64),
         window: Window,
     ) -> Counts {
-        let slope_cell = window.slope_deg / GRID_PER_WINDOW;
-        let gravity_cell = gravity_min * window.gravity_fraction / GRID_PER_WINDOW;
-        let columns = ((slope_max_deg / slope_cell).ceil() as usize).max(1);
-        let rows = (((gravity_max - gravity_min) / gravity_cell).ceil() as usize).max(1);
-        let mut cells = vec![vec![0u64; rows * columns]; SHARE_OUTCOMES.len() + 1];
+        let ((columns, rows), (slope_cell, gravity_cell)) =
+            grid(slope_max_deg, (gravity_min, gravity_max), window);
+        let (columns, rows) = (columns as usize, rows as usize);
+        let w = columns + 1;
+        // Each table counts cell (r, c) at [(r + 1) w + c + 1], then sums in place.
+        let mut tables = vec![vec![0u64; (rows + 1) * w]; SHARE_OUTCOMES.len() + 1];
         for (slope, gravity, outcome) in samples {
             if !(0.0..=slope_max_deg).contains(&slope)
                 || !(gravity_min..=gravity_max).contains(&gravity)
@@ -78,26 +104,19 @@ impl Counts {
             }
             let c = ((slope / slope_cell) as usize).min(columns - 1);
             let r = (((gravity - gravity_min) / gravity_cell) as usize).min(rows - 1);
-            cells[SHARE_OUTCOMES.len()][r * columns + c] += 1;
+            let at = (r + 1) * w + c + 1;
+            tables[SHARE_OUTCOMES.len()][at] += 1;
             if let Some(k) = SHARE_OUTCOMES.iter().position(|o| *o == outcome) {
-                cells[k][r * columns + c] += 1;
+                tables[k][at] += 1;
             }
         }
-        let tables = cells
-            .iter()
-            .map(|cell| {
-                let mut t = vec![0u64; (rows + 1) * (columns + 1)];
-                for r in 0..rows {
-                    for c in 0..columns {
-                        t[(r + 1) * (columns + 1) + c + 1] = cell[r * columns + c]
-                            + t[r * (columns + 1) + c + 1]
-                            + t[(r + 1) * (columns + 1) + c]
-                            - t[r * (columns + 1) + c];
-                    }
+        for t in &mut tables {
+            for r in 1..=rows {
+                for c in 1..=columns {
+                    t[r * w + c] += t[(r - 1) * w + c] + t[r * w + c - 1] - t[(r - 1) * w + c - 1];
                 }
-                t
-            })
-            .collect();
+            }
+        }
         Counts {
             slope_max_deg,
             gravity_min,
