@@ -89,7 +89,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         steps += kept_steps;
     }
     let todo = (range.start + kept)..range.end;
-    let bar = progress_bar(todo.end - todo.start, run.progress);
+    let bar = progress_bar(todo.end - todo.start, run.progress, "samples");
     let mut eta = super::eta::Eta::start(todo.end - todo.start, threads);
     let start = std::time::Instant::now();
     let mut computed = 0u64;
@@ -232,22 +232,25 @@ fn banner(
     )
 }
 
-/// A progress bar of `len` samples: hidden unless asked for and stderr is a terminal.
-fn progress_bar(len: u64, show: bool) -> indicatif::ProgressBar {
+/// A progress bar of `len` things (`unit`, plural: "samples"): hidden unless asked for and
+/// stderr is a terminal.
+pub(super) fn progress_bar(len: u64, show: bool, unit: &'static str) -> indicatif::ProgressBar {
     use std::io::IsTerminal;
     if !show || !std::io::stderr().is_terminal() {
         return indicatif::ProgressBar::hidden();
     }
     indicatif::ProgressBar::new(len).with_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} samples  {rate}  ETA {eta}")
-            .expect("valid template")
-            // Whole samples per second (indicatif's own `per_sec` has four decimals).
-            .with_key(
-                "rate",
-                |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
-                    let _ = write!(w, "{:.0} samples/s", state.per_sec());
-                },
-            ),
+        indicatif::ProgressStyle::with_template(&format!(
+            "{{bar:40}} {{pos}}/{{len}} {unit}  {{rate}}  ETA {{eta}}"
+        ))
+        .expect("valid template")
+        // Whole things per second (indicatif's own `per_sec` has four decimals).
+        .with_key(
+            "rate",
+            move |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = write!(w, "{:.0} {unit}/s", state.per_sec());
+            },
+        ),
     )
 }
 

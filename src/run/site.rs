@@ -92,7 +92,13 @@ fn body_of(
         .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
     let axis = unit_axis(args.spin_axis).map_err(|e| anyhow!("--spin-axis: {e}"))?;
     let omega = 2.0 * std::f64::consts::PI / (args.spin_period_h * 3600.0);
-    let facets = pool.install(|| crate::shape::facets(&poly, axis, omega));
+    let bar = super::execute::progress_bar(
+        poly.mesh().facet_geometry().len() as u64,
+        !args.quiet,
+        "facets",
+    );
+    let facets = pool.install(|| crate::shape::facets_told(&poly, axis, omega, || bar.inc(1)));
+    bar.finish_and_clear();
     let mesh = poly.mesh();
     let roughness = roughness_deg(mesh);
     let body = Body {

@@ -94,8 +94,23 @@ pub fn facet_gravity(
 /// costs about `2.5 F^2` terms. The result does not depend on the number of threads.
 #[must_use]
 pub fn facets(poly: &Polyhedron, spin_axis_unit: [f64; 3], omega_rad_s: f64) -> Vec<FacetGravity> {
+    facets_told(poly, spin_axis_unit, omega_rad_s, || {})
+}
+
+/// [`facets`], calling `done` as each facet is done (from any thread: a progress bar).
+#[must_use]
+pub fn facets_told(
+    poly: &Polyhedron,
+    spin_axis_unit: [f64; 3],
+    omega_rad_s: f64,
+    done: impl Fn() + Sync,
+) -> Vec<FacetGravity> {
     (0..poly.mesh().facet_geometry().len())
         .into_par_iter()
-        .map(|f| facet_gravity(poly, f, spin_axis_unit, omega_rad_s))
+        .map(|f| {
+            let g = facet_gravity(poly, f, spin_axis_unit, omega_rad_s);
+            done();
+            g
+        })
         .collect()
 }

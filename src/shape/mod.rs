@@ -24,7 +24,9 @@ mod roughness;
 mod vec3;
 
 pub use error::ShapeError;
-pub use facets::{FacetGravity, centrifugal, facet_gravity, facets, slope_deg, unit_axis};
+pub use facets::{
+    FacetGravity, centrifugal, facet_gravity, facets, facets_told, slope_deg, unit_axis,
+};
 pub use gravity::{Field, G, Polyhedron};
 pub use mesh::{CheckedMesh, DEGENERATE_AREA, Edge, FacetGeometry, MAX_FACETS, MAX_VERTICES, Mesh};
 pub use obj::{MAX_LINE_BYTES, parse_obj, read_obj};
