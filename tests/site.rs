@@ -396,3 +396,56 @@ fn a_maps_sweep_run_in_shards_gives_the_same_map() {
     again.assert_ok();
     assert!(again.stdout.contains("kept (done before)"), "{again}");
 }
+
+/// A shape model whose centre of mass lies away from its frame's origin (about which the
+/// spin turns) is mapped with a warning that gives where it lies; a centred one is not.
+#[test]
+fn a_body_off_its_origin_is_warned_of() {
+    let dir = TempDir::new("site-off-centre");
+    let mut sphere = icosphere(RADIUS_M, 2);
+    let run = |dir: &TempDir, name: &str| {
+        let file = format!("{name}.obj");
+        touchdown(
+            dir.path(),
+            &[
+                "site",
+                &file,
+                "--units",
+                "m",
+                "--density",
+                "2000",
+                "--spin-period",
+                "3.3",
+                "--samples",
+                "200",
+                "--out-dir",
+                name,
+                "--quiet",
+            ],
+        )
+    };
+    dir.write("centred.obj", &obj(&sphere));
+    let centred = run(&dir, "centred");
+    centred.assert_ok();
+    assert!(!centred.stderr.contains("centre of mass"), "{centred}");
+    // Moved by 0.1 R along x: 5 % of the bounding box's diagonal (2 R sqrt(3)), past the 1 %
+    // a map warns at. The centre of mass of a polyhedron moves with it exactly.
+    for v in &mut sphere.vertices {
+        v[0] += 0.1 * RADIUS_M;
+    }
+    dir.write("moved.obj", &obj(&sphere));
+    let moved = run(&dir, "moved");
+    assert_eq!(moved.code, Some(0), "{moved}");
+    assert!(
+        moved
+            .stderr
+            .contains("moved.obj: its centre of mass at constant density lies 3000.000 m"),
+        "{moved}"
+    );
+    assert!(
+        moved
+            .stdout
+            .contains("| centre of mass | (3000.00, 0.00, 0.00) m from the origin"),
+        "{moved}"
+    );
+}

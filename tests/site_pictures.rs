@@ -115,6 +115,7 @@ fn sphere(lons: usize, bands: usize) -> Site {
             mass_kg: 2000.0 * area_m2 * RADIUS_M / 3.0,
             volume_m3: area_m2 * RADIUS_M / 3.0,
             area_m2,
+            centre_of_mass_m: [0.0; 3],
         },
         facets,
     }

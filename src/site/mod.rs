@@ -97,6 +97,9 @@ pub struct Body {
     pub volume_m3: f64,
     /// Surface area, m^2.
     pub area_m2: f64,
+    /// The centre of mass at constant density, m, body frame. The spin is about the
+    /// frame's origin (a shape model's convention: its centre of mass), not about this.
+    pub centre_of_mass_m: [f64; 3],
 }
 
 /// A landing-site map: the body and each facet's numbers.

@@ -74,6 +74,15 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
         "| mass | {:.4e} kg (density {} kg/m^3) |",
         b.mass_kg, b.density_kg_m3
     );
+    // Shown to the centimetre, without a "-0.00".
+    let c = b
+        .centre_of_mass_m
+        .map(|x| if x.abs() < 0.005 { 0.0 } else { x });
+    let _ = writeln!(
+        s,
+        "| centre of mass | ({:.2}, {:.2}, {:.2}) m from the origin at constant density (the spin is about the origin) |",
+        c[0], c[1], c[2]
+    );
     let _ = writeln!(
         s,
         "| spin | period {} h about ({:.4}, {:.4}, {:.4}) |",

@@ -57,6 +57,13 @@ fn metadata(site: &Site, about: &About<'_>) -> HashMap<String, String> {
         ("touchdown.site.volume_m3", b.volume_m3.to_string()),
         ("touchdown.site.area_m2", b.area_m2.to_string()),
         (
+            "touchdown.site.centre_of_mass_m",
+            format!(
+                "{} {} {}",
+                b.centre_of_mass_m[0], b.centre_of_mass_m[1], b.centre_of_mass_m[2]
+            ),
+        ),
+        (
             "touchdown.site.window_slope_deg",
             about.window.slope_deg.to_string(),
         ),
