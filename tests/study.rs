@@ -372,6 +372,21 @@ fn bad_studies_are_refused_with_the_reason() {
     let missing = touchdown(dir.path(), &[&args("3")[..], &["--out-dir", "sh"]].concat());
     assert_eq!(missing.code, Some(2), "{missing}");
     assert!(missing.stderr.contains("lacks shard 1/2"), "{missing}");
+    // Shards of two counts: which to keep is the user's to say.
+    touchdown(
+        dir.path(),
+        &[&args("3")[..], &["--out-dir", "sh", "--shard", "2/3"]].concat(),
+    )
+    .assert_ok();
+    let mixed = touchdown(dir.path(), &[&args("3")[..], &["--out-dir", "sh"]].concat());
+    assert_eq!(mixed.code, Some(2), "{mixed}");
+    assert!(
+        mixed.stderr.contains(
+            "holds shards of the sweep at lander.cg_height_m = 0.4 cut 2 and 3 ways: keep those \
+             of one --shard count"
+        ),
+        "{mixed}"
+    );
     // --out-dir a file.
     dir.write("f", "x");
     let file = touchdown(dir.path(), &[&args("1")[..], &["--out-dir", "f"]].concat());

@@ -122,10 +122,14 @@ impl Point {
                 whose: format!("this study's sweep at {}", self.value),
                 owner: "study",
                 sweep: format!("the sweep at {}", self.value),
+                // "the sweep at lander.cg_height_m = 0.4": the key is the text's header's.
                 sweep_long: format!(
-                    "the sweep at {} = {}",
-                    self.text.lines().next().unwrap_or_default(),
-                    self.value
+                    "the sweep at {}",
+                    self.text
+                        .lines()
+                        .next()
+                        .and_then(|l| l.strip_prefix("# touchdown study: "))
+                        .map_or_else(|| self.value.to_string(), str::to_string)
                 ),
             },
         }
