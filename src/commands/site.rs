@@ -24,12 +24,14 @@ pub enum Units {
 /// Flags of `touchdown site`.
 #[derive(clap::Args, Debug)]
 pub struct SiteArgs {
-    /// The shape model: a Wavefront OBJ file (`v` and `f` lines) of a closed surface whose
-    /// facets wind counter-clockwise seen from outside, in the body-fixed frame (origin at
-    /// the centre of mass).
+    /// The shape model: a Wavefront OBJ file (`v` and `f` lines) or a vertex-facet plate
+    /// file (PDS `.tab`: `NV NF`, then rows `i x y z` and `j a b c`; SBMT `.plt`: the same
+    /// with `NF` on its own line after the vertices), told apart by content, of a closed
+    /// surface whose facets wind counter-clockwise seen from outside, in the body-fixed frame
+    /// (origin at the centre of mass).
     #[arg(value_name = "SHAPE")]
     pub shape: PathBuf,
-    /// Units of the shape file's coordinates (an OBJ file does not say).
+    /// Units of the shape file's coordinates (neither format says).
     #[arg(long, value_enum)]
     pub units: Units,
     /// Bulk density of the body, kg/m^3 (constant throughout).

@@ -13,7 +13,7 @@ use crate::output::format::Format;
 use crate::output::sweep::SweepFile;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
-use crate::shape::{FacetGravity, Polyhedron, read_obj, roughness_deg, unit_axis};
+use crate::shape::{FacetGravity, Polyhedron, read_shape, roughness_deg, unit_axis};
 use crate::site::estimate::{Counts, Window, grid_bytes};
 use crate::site::{Body, Site, SiteFacet};
 use crate::sweep::Shard;
@@ -114,7 +114,7 @@ fn body_of(
     args: &SiteSettings,
     pool: &rayon::ThreadPool,
 ) -> anyhow::Result<(Body, Vec<FacetGravity>, Vec<f64>)> {
-    let mesh = read_obj(&args.shape, args.metres_per_unit)?
+    let mesh = read_shape(&args.shape, args.metres_per_unit)?
         .check()
         .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
     let poly = Polyhedron::new(mesh, args.density_kg_m3)

@@ -1,5 +1,6 @@
-//! The shape model of a small body and its gravity: a Wavefront OBJ file read into a mesh
-//! (obj.rs), the mesh checked to be a closed, consistently oriented, outward-facing surface
+//! The shape model of a small body and its gravity: a Wavefront OBJ file (obj.rs) or a
+//! vertex-facet plate file (plate.rs: PDS `.tab`, SBMT `.plt`) read into a mesh, the format
+//! chosen by the file's content (read.rs), the mesh checked to be a closed, consistently oriented, outward-facing surface
 //! with its geometry (mesh.rs), the constant-density polyhedron's gravity in closed form
 //! (gravity.rs: Werner and Scheeres 1997), and per facet the spin's centrifugal
 //! acceleration, the effective gravity and the slope (facets.rs), and each facet's roughness
@@ -8,7 +9,7 @@
 //! ```no_run
 //! # use touchdown::shape::*;
 //! # fn main() -> Result<(), ShapeError> {
-//! let mesh = read_obj(std::path::Path::new("itokawa.obj"), 1000.0)?.check()?;
+//! let mesh = read_shape(std::path::Path::new("ver64q.tab"), 1000.0)?.check()?;
 //! let body = Polyhedron::new(mesh, 1900.0)?;
 //! let omega = 2.0 * std::f64::consts::PI / (12.132 * 3600.0);
 //! let sites = facets(&body, [0.0, 0.0, 1.0], omega);
@@ -20,6 +21,8 @@ mod facets;
 mod gravity;
 mod mesh;
 mod obj;
+mod plate;
+mod read;
 mod roughness;
 mod vec3;
 
@@ -30,4 +33,6 @@ pub use facets::{
 pub use gravity::{Field, G, Polyhedron};
 pub use mesh::{CheckedMesh, DEGENERATE_AREA, Edge, FacetGeometry, MAX_FACETS, MAX_VERTICES, Mesh};
 pub use obj::{MAX_LINE_BYTES, parse_obj, read_obj};
+pub use plate::{parse_plate, read_plate};
+pub use read::{parse_shape, read_shape};
 pub use roughness::roughness_deg;

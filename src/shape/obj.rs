@@ -40,7 +40,7 @@ pub fn parse_obj(text: &str, name: &str, metres_per_unit: f64) -> Result<Mesh, S
     parse(text.as_bytes(), name, metres_per_unit)
 }
 
-fn parse<R: BufRead>(mut reader: R, name: &str, scale: f64) -> Result<Mesh, ShapeError> {
+pub(super) fn parse<R: BufRead>(mut reader: R, name: &str, scale: f64) -> Result<Mesh, ShapeError> {
     if !(scale.is_finite() && scale > 0.0) {
         return Err(ShapeError::Value(format!(
             "metres per unit of the shape model {name} must be a positive number, not {scale}"

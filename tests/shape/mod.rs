@@ -1,10 +1,12 @@
 //! The shape model and its gravity (`touchdown::shape`) against closed forms: a sphere, a
 //! cube, a far-away point mass, the gradient of the potential, a spinning sphere's slope,
 //! each facet's roughness on the regular solids and icospheres; bad meshes and bad OBJ
-//! files refused.
+//! and plate files refused.
 
 mod gravity;
 mod obj;
+mod plate;
+mod plate_refusals;
 mod refusals;
 mod roughness;
 mod slope;
