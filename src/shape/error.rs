@@ -43,3 +43,15 @@ impl fmt::Display for ShapeError {
 }
 
 impl std::error::Error for ShapeError {}
+
+/// Opens the shape model at `path` for reading, with its name for messages.
+pub(super) fn open(
+    path: &std::path::Path,
+) -> Result<(std::io::BufReader<std::fs::File>, String), ShapeError> {
+    let name = path.display().to_string();
+    let file = std::fs::File::open(path).map_err(|e| ShapeError::Read {
+        file: name.clone(),
+        reason: e.to_string(),
+    })?;
+    Ok((std::io::BufReader::new(file), name))
+}

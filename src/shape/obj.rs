@@ -16,7 +16,7 @@
 
 use super::error::ShapeError;
 use super::mesh::{MAX_FACETS, MAX_VERTICES, Mesh};
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, Read};
 use std::path::Path;
 
 /// The longest line read, in bytes.
@@ -26,12 +26,8 @@ pub const MAX_LINE_BYTES: usize = 1 << 20;
 /// (1000 for a model in kilometres, as PDS shape models usually are). The mesh is not yet
 /// checked: see [`Mesh::check`].
 pub fn read_obj(path: &Path, metres_per_unit: f64) -> Result<Mesh, ShapeError> {
-    let name = path.display().to_string();
-    let file = std::fs::File::open(path).map_err(|e| ShapeError::Read {
-        file: name.clone(),
-        reason: e.to_string(),
-    })?;
-    parse(BufReader::new(file), &name, metres_per_unit)
+    let (file, name) = super::error::open(path)?;
+    parse(file, &name, metres_per_unit)
 }
 
 /// Parses the text of an OBJ shape model named `name` (in messages), its coordinates

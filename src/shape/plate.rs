@@ -21,7 +21,7 @@
 use super::error::ShapeError;
 use super::mesh::{MAX_FACETS, MAX_VERTICES, Mesh};
 use super::obj::MAX_LINE_BYTES;
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, Read};
 use std::path::Path;
 
 /// The most rows reserved ahead of reading them.
@@ -31,12 +31,8 @@ const RESERVE_AHEAD: usize = 1 << 16;
 /// (1000 for a model in kilometres, as PDS models are). The mesh is not yet checked: see
 /// [`Mesh::check`].
 pub fn read_plate(path: &Path, metres_per_unit: f64) -> Result<Mesh, ShapeError> {
-    let name = path.display().to_string();
-    let file = std::fs::File::open(path).map_err(|e| ShapeError::Read {
-        file: name.clone(),
-        reason: e.to_string(),
-    })?;
-    parse(BufReader::new(file), &name, metres_per_unit)
+    let (file, name) = super::error::open(path)?;
+    parse(file, &name, metres_per_unit)
 }
 
 /// Parses the text of a plate shape model named `name` (in messages), its coordinates

@@ -14,12 +14,8 @@ use std::path::Path;
 /// Reads the shape model at `path`, plate or OBJ by its content, its coordinates multiplied
 /// by `metres_per_unit`. The mesh is not yet checked: see [`Mesh::check`].
 pub fn read_shape(path: &Path, metres_per_unit: f64) -> Result<Mesh, ShapeError> {
-    let name = path.display().to_string();
-    let file = std::fs::File::open(path).map_err(|e| ShapeError::Read {
-        file: name.clone(),
-        reason: e.to_string(),
-    })?;
-    read(BufReader::new(file), &name, metres_per_unit)
+    let (file, name) = super::error::open(path)?;
+    read(file, &name, metres_per_unit)
 }
 
 /// Parses the text of a shape model named `name` (in messages), plate or OBJ by its
