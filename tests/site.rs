@@ -366,6 +366,31 @@ fn a_maps_sweep_run_in_shards_gives_the_same_map() {
     let missing = run(&[], "cut");
     assert_eq!(missing.code, Some(2), "{missing}");
     assert!(missing.stderr.contains("lacks shard 1/2"), "{missing}");
+    // Refused by the shards' names alone, before the facets' gravity: before the shape is
+    // even read (this one is not closed, and that is not what is said).
+    dir.write("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    let early = touchdown(
+        dir.path(),
+        &[
+            "site",
+            "open.obj",
+            "--units",
+            "m",
+            "--density",
+            "2000",
+            "--spin-period",
+            "3.3",
+            "--samples",
+            "3000",
+            "--out-dir",
+            "cut",
+        ],
+    );
+    assert_eq!(early.code, Some(2), "{early}");
+    assert!(
+        early.stderr.contains("the map's sweep is sharded 2 ways and lacks shard 1/2"),
+        "{early}"
+    );
     run(&["--shard", "1/2"], "cut").assert_ok();
     let merged = run(&[], "cut");
     merged.assert_ok();

@@ -69,7 +69,7 @@ pub struct SiteArgs {
     #[arg(long, value_enum, default_value = "arrow")]
     pub format: Format,
     /// Run only the K-th of N contiguous slices of the map's sweep, into the map's folder
-    /// (`sweep.shard-K-of-N.arrow`), and make no map; the command without --shard then
+    /// (`sweep.shard-K-of-N.arrow`, `.parquet` with --format parquet), and make no map; the command without --shard then
     /// merges the shards and makes the map.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<Shard>,

@@ -6,7 +6,7 @@
 use super::execute::{RunOptions, warn_untouched};
 use super::load::{KernelChoice, load_scenario, scenario_from_toml};
 use super::signals::stop_on_signals;
-use super::steps::{Done, Kept, Names, Running, run_step, shard_file, step_of};
+use super::steps::{Done, Kept, Names, Running, run_step, shard_file, shards_there, step_of};
 use super::workers::worker_pool;
 use crate::output::FolderLock;
 use crate::output::format::Format;
@@ -236,6 +236,16 @@ fn sweep_text(
     Ok((text, scenario))
 }
 
+/// How messages name the map's sweep.
+fn names() -> Names {
+    Names {
+        whose: "this map's sweep".into(),
+        owner: "map",
+        sweep: "the map's sweep".into(),
+        sweep_long: "the map's sweep".into(),
+    }
+}
+
 /// Does the site's sweep, or its shard `args.shard`: kept when done before, merged from
 /// its shards, resumed when interrupted, run otherwise; returns what was done.
 fn sweep(
@@ -250,12 +260,7 @@ fn sweep(
         scenario,
         file,
         samples: args.samples,
-        names: Names {
-            whose: "this map's sweep".into(),
-            owner: "map",
-            sweep: "the map's sweep".into(),
-            sweep_long: "the map's sweep".into(),
-        },
+        names: names(),
     };
     let step = step_of(&kept, args.shard)?;
     let stop = stop_on_signals()?;
@@ -336,6 +341,11 @@ fn counts(
     }
 }
 
+/// The most memory, bytes, a map's grid takes where the machine does not say what it has
+/// available (not Linux): 4 GB, thousands of times the default windows' grid on the
+/// Itokawa model (under 1 MB).
+const UNKNOWN_MEMORY_CAP: f64 = 4e9;
+
 /// Refuses windows so fine that the counts' grid would not fit the machine, before the
 /// sweep runs.
 fn check_grid(
@@ -354,13 +364,28 @@ fn check_grid(
             super::memory::shown_bytes(bytes.min(u64::MAX as f64) as u64)
         );
     }
-    super::memory::check_fits(bytes as u64, || {
+    // A shard counts nothing: the machine that merges the shards makes the grid.
+    if args.shard.is_some() {
+        return Ok(());
+    }
+    let what = || {
         format!(
             "--slope-window {} and --gravity-window {}: the grid that counts the sweep's \
              samples in windows this fine",
             args.window.slope_deg, args.window.gravity_fraction
         )
-    })
+    };
+    // Where the machine does not say what it has, a grid past UNKNOWN_MEMORY_CAP is refused.
+    if super::memory::available_bytes().is_none() && bytes > UNKNOWN_MEMORY_CAP {
+        bail!(
+            "{} would hold about {} of memory, more than the {} a map takes where the \
+             machine does not say what it has: widen them",
+            what(),
+            super::memory::shown_bytes(bytes as u64),
+            super::memory::shown_bytes(UNKNOWN_MEMORY_CAP as u64)
+        );
+    }
+    super::memory::check_fits(bytes as u64, what)
 }
 
 /// What a site's run made.
@@ -386,6 +411,19 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
         bail!("--out-dir {}: that is a file, not a folder", dir.display());
     }
     let (_, base_text) = load_scenario(args.scenario.as_ref(), args.seed)?;
+    let ext = match args.format {
+        Format::Arrow => "arrow",
+        Format::Parquet => "parquet",
+    };
+    let sweep_file = dir.join(format!("sweep.{ext}"));
+    // Shards missing or of two counts are refused by their names before the facets'
+    // gravity, the costly part; what they hold is compared once the sweep's text is known.
+    if args.shard.is_none()
+        && !sweep_file.exists()
+        && !crate::output::interrupted_path(&sweep_file).exists()
+    {
+        shards_there(&sweep_file, &names())?;
+    }
     let pool = worker_pool(args.threads)?;
     let started = std::time::Instant::now();
     let (body, gravity, roughness) = body_of(args, &pool)?;
@@ -397,11 +435,6 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
         .map_err(|e| anyhow!("cannot make the map's folder {}: {e}", dir.display()))?;
     // Shared by the shards of one map, which a cluster runs side by side.
     let lock = FolderLock::acquire(dir, args.shard.is_some())?;
-    let ext = match args.format {
-        Format::Arrow => "arrow",
-        Format::Parquet => "parquet",
-    };
-    let sweep_file = dir.join(format!("sweep.{ext}"));
     let log = sweep(args, &pool, &sweep_file, &text, &scenario)?;
     if let Some(shard) = args.shard {
         return Ok(Made::Shard {

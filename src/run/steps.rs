@@ -143,14 +143,41 @@ pub fn step_of(kept: &Kept<'_>, shard: Option<Shard>) -> anyhow::Result<Step> {
             Some(what) => Err(other(&interrupted, what)),
         };
     }
-    let dir = kept.file.parent().unwrap_or(Path::new("."));
-    if shard.is_some() || !dir.is_dir() {
+    if shard.is_some() {
         return Ok(Step::Run);
+    }
+    let Some(files) = shards_there(kept.file, &kept.names)? else {
+        return Ok(Step::Run);
+    };
+    let n = files.len() as u64;
+    for f in &files {
+        let mut meta = metadata_of(f)?;
+        let shard = Shard { index: 0, count: n };
+        // Shards share all but their index: compare with shard 0's key, index aside.
+        meta.insert(
+            crate::output::sweep::SHARD_KEYS[0].to_string(),
+            shard.to_string(),
+        );
+        if let Some(what) = differs(&meta, kept, Some(shard)) {
+            return Err(other(f, what));
+        }
+    }
+    Ok(Step::Merge(files))
+}
+
+/// The complete shard files of the sweep `file` in its folder, all N of one count
+/// (`NAME.shard-K-of-N.EXT`), by their names alone; `None` where there is none. Refused
+/// where shards of two counts lie there, or some of the N are missing: a check cheap enough
+/// to make before a command's costly set-up.
+pub fn shards_there(file: &Path, names: &Names) -> anyhow::Result<Option<Vec<PathBuf>>> {
+    let dir = file.parent().unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        return Ok(None);
     }
     // Shard files of this sweep, complete ones, by shard count.
     let mut counts = std::collections::BTreeMap::<u64, Vec<u64>>::new();
-    let stem = kept.file.file_stem().unwrap_or_default().to_string_lossy();
-    let ext = kept.file.extension().unwrap_or_default().to_string_lossy();
+    let stem = file.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = file.extension().unwrap_or_default().to_string_lossy();
     for entry in std::fs::read_dir(dir).with_context(|| format!("cannot read {}", dir.display()))? {
         let name = entry?.file_name().to_string_lossy().into_owned();
         let shard = name
@@ -163,13 +190,13 @@ pub fn step_of(kept: &Kept<'_>, shard: Option<Shard>) -> anyhow::Result<Step> {
         }
     }
     let Some((&n, have)) = counts.iter().next_back() else {
-        return Ok(Step::Run);
+        return Ok(None);
     };
     if counts.len() > 1 {
         bail!(
             "{} holds shards of {} cut {} ways: keep those of one --shard count",
             dir.display(),
-            kept.names.sweep_long,
+            names.sweep_long,
             counts
                 .keys()
                 .map(u64::to_string)
@@ -185,28 +212,16 @@ pub fn step_of(kept: &Kept<'_>, shard: Option<Shard>) -> anyhow::Result<Step> {
         bail!(
             "{} is sharded {n} ways and lacks shard{} {}: run {} with --shard, then this \
              command again",
-            kept.names.sweep,
+            names.sweep,
             if missing.len() == 1 { "" } else { "s" },
             missing.join(", "),
             if missing.len() == 1 { "it" } else { "them" }
         );
     }
     let files: Vec<PathBuf> = (0..n)
-        .map(|k| shard_file(kept.file, Shard { index: k, count: n }))
+        .map(|k| shard_file(file, Shard { index: k, count: n }))
         .collect();
-    for f in &files {
-        let mut meta = metadata_of(f)?;
-        let shard = Shard { index: 0, count: n };
-        // Shards share all but their index: compare with shard 0's key, index aside.
-        meta.insert(
-            crate::output::sweep::SHARD_KEYS[0].to_string(),
-            shard.to_string(),
-        );
-        if let Some(what) = differs(&meta, kept, Some(shard)) {
-            return Err(other(f, what));
-        }
-    }
-    Ok(Step::Merge(files))
+    Ok(Some(files))
 }
 
 /// How a step runs a sweep.

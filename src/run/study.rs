@@ -321,3 +321,35 @@ fn run_step(
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_value_goes_where_its_key_says_and_the_scenario_checks_it() {
+        let base: toml::Table = "seed = 3\n[lander]\nlegs = 4\n".parse().unwrap();
+        let (text, s) = with_value(&base, "lander.footpad_radius_m", 0.75).unwrap();
+        let tip = s.lander.tips_m()[0];
+        assert!((tip[0].hypot(tip[1]) - 0.75).abs() < 1e-12, "{tip:?}");
+        assert_eq!(s.seed, 3);
+        assert!(text.starts_with("# touchdown study: lander.footpad_radius_m = 0.75\n"));
+        // A whole number where the scenario wants one.
+        let (_, s) = with_value(&base, "lander.legs", 3.0).unwrap();
+        assert_eq!(s.lander.tips_m().len(), 3);
+        // A key the scenario does not have, and a value it refuses: its reader's message.
+        let e = with_value(&base, "lander.footpad_radius_mm", 0.5).unwrap_err();
+        assert!(format!("{e:#}").contains("footpad_radius_mm"), "{e:#}");
+        let e = with_value(&base, "lander.footpad_radius_m", -1.0).unwrap_err();
+        assert!(
+            format!("{e:#}").contains("at lander.footpad_radius_m = -1"),
+            "{e:#}"
+        );
+        let e = with_value(&base, "lander.legs", 3.5).unwrap_err();
+        assert!(format!("{e:#}").contains("whole number"), "{e:#}");
+        let e = with_value(&base, "lander", 1.0).unwrap_err();
+        assert!(format!("{e:#}").contains("table of settings"), "{e:#}");
+        let e = with_value(&base, "seed.x", 1.0).unwrap_err();
+        assert!(format!("{e:#}").contains("not a table of keys"), "{e:#}");
+    }
+}

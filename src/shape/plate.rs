@@ -14,8 +14,8 @@
 //! place; a vertex number must lie in `1..=NV`; rows missing before the end of the file, and
 //! anything but blank lines after the last facet, are refused. Errors name the file and the
 //! line. The counts are checked against [`MAX_VERTICES`] and [`MAX_FACETS`] (and against 4,
-//! the fewest a closed surface has) before anything is reserved, and the reader reserves no
-//! more than the rows it has read (a header claiming a trillion vertices costs nothing);
+//! the fewest a closed surface has) before anything is reserved, and the reader reserves at
+//! most 65,536 rows ahead of those it has read (a header claiming the limits costs little);
 //! lines are at most [`MAX_LINE_BYTES`] bytes.
 
 use super::error::ShapeError;
