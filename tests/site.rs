@@ -388,7 +388,9 @@ fn a_maps_sweep_run_in_shards_gives_the_same_map() {
     );
     assert_eq!(early.code, Some(2), "{early}");
     assert!(
-        early.stderr.contains("the map's sweep is sharded 2 ways and lacks shard 1/2"),
+        early
+            .stderr
+            .contains("the map's sweep is sharded 2 ways and lacks shard 1/2"),
         "{early}"
     );
     run(&["--shard", "1/2"], "cut").assert_ok();
