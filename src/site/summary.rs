@@ -143,11 +143,24 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
         ("0.99 or more", &|x: Option<f64>| {
             x.is_some_and(|p| p >= SAFE_P_STABLE)
         }),
-        ("none (too steep to stand on)", &|x: Option<f64>| {
-            x.is_none()
-        }),
     ] {
         let _ = writeln!(s, "| {label} | {:.2} % |", share(&|x| keep(p(x))));
+    }
+    // Past 90 deg the effective gravity points off the ground (a spin near its limit): no
+    // lander stays there, and the row says so apart from the merely steep (only when there
+    // is such a facet, so other maps keep their rows).
+    let off = |x: &super::SiteFacet| x.slope_deg > 90.0;
+    let _ = writeln!(
+        s,
+        "| none (too steep to stand on) | {:.2} % |",
+        share(&|x| p(x).is_none() && !off(x))
+    );
+    if f.iter().any(off) {
+        let _ = writeln!(
+            s,
+            "| none (the effective gravity points off the ground: slope over 90 deg) | {:.2} % |",
+            share(&|x| p(x).is_none() && off(x))
+        );
     }
     let with: Vec<&super::SiteFacet> = f.iter().filter(|x| x.shares.is_some()).collect();
     let with_area: f64 = with.iter().map(|x| x.area_m2).sum();
