@@ -87,10 +87,37 @@ fn a_sweep_whose_landers_never_touch_says_so() {
     assert!(
         run.stderr
             .contains("40 of the 40 samples run never touched the surface")
-            && run
-                .stderr
-                .contains("40 turned past 90 deg in flight (tipped)")
+            && run.stderr.contains(
+                "40 turned past 90 deg in flight (tipped) before reaching it: body rates"
+            )
             && !run.stderr.contains("release too high"),
+        "{run}"
+    );
+    // On a steep slope a lander released upright already leans from the ground's normal by
+    // the slope (the tilt is taken from it): there the slope is named, not just the rates.
+    dir.write(
+        "steep.toml",
+        "[initial]\nclearance_m = 3.0\n[inputs]\nslope_deg = 80.0\nrate_x_deg_s = 20.0\n\
+         [simulation]\nt_max_s = 20.0\n",
+    );
+    let run = touchdown(
+        dir.path(),
+        &[
+            "sweep",
+            "--scenario",
+            "steep.toml",
+            "--samples",
+            "40",
+            "--out",
+            "steep.arrow",
+        ],
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(
+        run.stderr.contains(
+            "40 turned past 90 deg in flight (tipped) before reaching it, all on slopes of \
+             80.0 deg or more"
+        ),
         "{run}"
     );
     // A descent braked on its profile from 15 m needs over a minute (scenarios/descent.toml

@@ -46,6 +46,8 @@ pub struct Executed {
     pub untouched: u64,
     /// Of those, the samples that tipped in flight (turned past 90 deg before touching).
     pub untouched_tipped: u64,
+    /// The gentlest slope among those (deg; infinite where there is none).
+    pub untouched_tipped_slope_deg: f64,
     /// Of those, the samples still in their powered descent at the end (never released).
     pub untouched_descending: u64,
     /// The batches written, in order, where `RunOptions::keep` asked for them.
@@ -95,6 +97,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     let mut computed = 0u64;
     let mut untouched = 0u64;
     let mut untouched_tipped = 0u64;
+    let mut untouched_tipped_slope_deg = f64::INFINITY;
     let mut untouched_descending = 0u64;
     let ran = run.pool.install(|| {
         crate::sweep::run_until(
@@ -110,7 +113,11 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
                     steps += r.summary.steps;
                     let never = r.summary.first_contact_s.is_none();
                     untouched += u64::from(never);
-                    untouched_tipped += u64::from(never && r.summary.outcome == Outcome::Tipped);
+                    if never && r.summary.outcome == Outcome::Tipped {
+                        untouched_tipped += 1;
+                        untouched_tipped_slope_deg =
+                            untouched_tipped_slope_deg.min(r.sample.inputs.slope_deg);
+                    }
                     let descending = r
                         .summary
                         .control
@@ -145,6 +152,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         steps,
         untouched,
         untouched_tipped,
+        untouched_tipped_slope_deg,
         untouched_descending,
         batches,
     })
@@ -318,7 +326,18 @@ pub fn warn_untouched(done: &Executed, scenario: &Scenario, at: &str) {
              inputs.release_height_m and inputs.velocity_error_z_m_s"
         ));
     }
-    if tipped > 0 {
+    // The tilt is taken from the ground's normal (MODEL.md 8): on a slope of 45 deg or more
+    // a lander released upright already leans that far, and the slope is the likelier cause.
+    let slope = done.untouched_tipped_slope_deg;
+    if tipped > 0 && slope >= 45.0 {
+        why.push(format!(
+            "{tipped} turned past 90 deg in flight (tipped) before reaching it, all on slopes \
+             of {slope:.1} deg or more: a lander released upright leans that far from the \
+             ground's normal before it moves, and small body rates turn it past 90 deg in a \
+             long fall (see inputs.slope_deg, and the rates inputs.rate_x_deg_s and \
+             inputs.rate_y_deg_s)"
+        ));
+    } else if tipped > 0 {
         why.push(format!(
             "{tipped} turned past 90 deg in flight (tipped) before reaching it: body rates or \
              attitude errors too large for the fall? See inputs.rate_x_deg_s, \
