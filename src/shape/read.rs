@@ -24,6 +24,9 @@ pub fn parse_shape(text: &str, name: &str, metres_per_unit: f64) -> Result<Mesh,
     read(text.as_bytes(), name, metres_per_unit)
 }
 
+/// The UTF-8 byte order mark.
+const BOM: &[u8] = b"\xEF\xBB\xBF";
+
 /// Whether a line holds one or two counts (digits only) and nothing else.
 fn is_plate_counts(line: &[u8]) -> bool {
     let Ok(text) = std::str::from_utf8(line) else {
@@ -46,6 +49,14 @@ fn read<R: BufRead>(mut reader: R, name: &str, scale: f64) -> Result<Mesh, Shape
     if !(scale.is_finite() && scale > 0.0) {
         // The OBJ reader's message, before anything is read (as read_obj gives it).
         return obj::parse(&b""[..], name, scale);
+    }
+    // A UTF-8 byte order mark, as some Windows tools write one, is no part of either format.
+    let head = reader.fill_buf().map_err(|e| ShapeError::Read {
+        file: name.to_string(),
+        reason: e.to_string(),
+    })?;
+    if head.starts_with(BOM) {
+        reader.consume(BOM.len());
     }
     let mut blank = 0u64;
     let mut first = Vec::new();
@@ -81,5 +92,26 @@ fn read<R: BufRead>(mut reader: R, name: &str, scale: f64) -> Result<Mesh, Shape
         plate::parse(replayed, name, scale)
     } else {
         obj::parse(replayed, name, scale)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_shape;
+
+    #[test]
+    fn a_byte_order_mark_is_read_past_in_either_format() {
+        let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+        let plate = "4 4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n\
+                     1 1 3 2\n2 1 2 4\n3 1 4 3\n4 2 3 4\n";
+        for text in [obj, plate] {
+            let plain = parse_shape(text, "t", 1.0).expect("reads");
+            let marked =
+                parse_shape(&format!("\u{feff}{text}"), "t", 1.0).expect("reads with a BOM");
+            assert_eq!(plain.vertices, marked.vertices);
+            assert_eq!(plain.facets, marked.facets);
+        }
+        // Only at the start: elsewhere it is content, refused as before.
+        assert!(parse_shape(&format!("{obj}\u{feff}v 0 0 0\n"), "t", 1.0).is_err());
     }
 }
