@@ -121,11 +121,17 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
         sweep.window.slope_deg,
         100.0 * sweep.window.gravity_fraction
     );
+    // An area of none reads "0 m^2", not "0.0000e0 m^2".
+    let safe_m2 = site.safe_area_fraction() * area;
+    let safe_m2 = if safe_m2 == 0.0 {
+        "0".to_string()
+    } else {
+        format!("{safe_m2:.4e}")
+    };
     let _ = writeln!(
         s,
-        "**P(stable) >= {SAFE_P_STABLE} on {:.2} % of the surface** ({:.4e} m^2).\n",
+        "**P(stable) >= {SAFE_P_STABLE} on {:.2} % of the surface** ({safe_m2} m^2).\n",
         100.0 * site.safe_area_fraction(),
-        site.safe_area_fraction() * area
     );
     let p = |x: &super::SiteFacet| x.p_stable().map(|s| s.p);
     let _ = writeln!(s, "| P(stable) | share of the surface |\n|---|---|");
