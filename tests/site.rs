@@ -46,6 +46,43 @@ const GENTLE: &str = "[inputs]\nrelease_height_m = { dist = \"uniform\", min = 0
     rate_z_deg_s = { dist = \"normal\", mean = 0.0, sd = 0.2 }\n\
     [simulation]\nt_max_s = 60.0\n";
 
+/// `touchdown site SHAPE` at 2000 kg/m^3 with the body's units and spin period, a sample
+/// count and an output folder, then `extra` (the tests' common arguments).
+fn site_args(
+    shape: &str,
+    units: &str,
+    period: &str,
+    samples: &str,
+    out: &str,
+    extra: &[&str],
+) -> Vec<String> {
+    let mut args: Vec<String> = [
+        "site",
+        shape,
+        "--units",
+        units,
+        "--density",
+        "2000",
+        "--spin-period",
+        period,
+        "--samples",
+        samples,
+        "--out-dir",
+        out,
+    ]
+    .iter()
+    .map(|s| (*s).to_string())
+    .collect();
+    args.extend(extra.iter().map(|s| (*s).to_string()));
+    args
+}
+
+/// Runs `touchdown` in `dir` with `args`.
+fn run_site(dir: &TempDir, args: &[String]) -> crate::common::Run {
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    touchdown(dir.path(), &args)
+}
+
 /// The stable count and the sample count a sweep's summary prints.
 fn stable_of(stdout: &str) -> (u64, u64) {
     let number = |key: &str| {
@@ -65,24 +102,15 @@ fn a_spinning_spheres_map_matches_its_closed_form_and_direct_sweeps() {
     dir.write("sphere.obj", &obj(&icosphere(RADIUS_M, 3)));
     dir.write("gentle.toml", GENTLE);
     let period = PERIOD_H.to_string();
-    let args = [
-        "site",
+    let args = site_args(
         "sphere.obj",
-        "--units",
         "m",
-        "--density",
-        "2000",
-        "--spin-period",
         &period,
-        "--scenario",
-        "gentle.toml",
-        "--samples",
         "20000",
-        "--out-dir",
         "map",
-        "--quiet",
-    ];
-    let run = touchdown(dir.path(), &args);
+        &["--scenario", "gentle.toml", "--quiet"],
+    );
+    let run = run_site(&dir, &args);
     assert_eq!(run.code, Some(0), "{run}");
     let table = dir.join("map/facets.arrow");
     for f in [
@@ -207,7 +235,7 @@ fn a_spinning_spheres_map_matches_its_closed_form_and_direct_sweeps() {
     }
     // Run again: the sweep is kept, and the table is the same.
     let before = std::fs::read(&table).unwrap();
-    let again = touchdown(dir.path(), &args);
+    let again = run_site(&dir, &args);
     assert!(again.stdout.contains("kept (done before)"), "{again}");
     assert_eq!(std::fs::read(&table).unwrap(), before);
 }
@@ -241,23 +269,9 @@ fn bad_shapes_and_flags_are_refused_naming_them() {
         ("not OBJ", "v 1 2\n", "line 1"),
     ] {
         dir.write("body.obj", text);
-        let run = touchdown(
-            dir.path(),
-            &[
-                "site",
-                "body.obj",
-                "--units",
-                "km",
-                "--density",
-                "2000",
-                "--spin-period",
-                "5",
-                "--samples",
-                "100",
-                "--out-dir",
-                "out",
-                "--quiet",
-            ],
+        let run = run_site(
+            &dir,
+            &site_args("body.obj", "km", "5", "100", "out", &["--quiet"]),
         );
         assert_eq!(run.code, Some(2), "{name}: {run}");
         assert!(
@@ -325,30 +339,17 @@ fn a_maps_sweep_run_in_shards_gives_the_same_map() {
     dir.write("sphere.obj", &obj(&icosphere(RADIUS_M, 2)));
     dir.write("gentle.toml", GENTLE);
     let period = PERIOD_H.to_string();
-    let args = |out: &'static str| {
-        vec![
-            "site".to_string(),
-            "sphere.obj".into(),
-            "--units".into(),
-            "m".into(),
-            "--density".into(),
-            "2000".into(),
-            "--spin-period".into(),
-            period.clone(),
-            "--scenario".into(),
-            "gentle.toml".into(),
-            "--samples".into(),
-            "3000".into(),
-            "--out-dir".into(),
-            out.into(),
-            "--quiet".into(),
-        ]
-    };
     let run = |extra: &[&str], out: &'static str| {
-        let mut a = args(out);
+        let mut a = site_args(
+            "sphere.obj",
+            "m",
+            &period,
+            "3000",
+            out,
+            &["--scenario", "gentle.toml", "--quiet"],
+        );
         a.extend(extra.iter().map(|s| (*s).to_string()));
-        let a: Vec<&str> = a.iter().map(String::as_str).collect();
-        touchdown(dir.path(), &a)
+        run_site(&dir, &a)
     };
     run(&[], "whole").assert_ok();
     let first = run(&["--shard", "0/2"], "cut");
@@ -369,23 +370,7 @@ fn a_maps_sweep_run_in_shards_gives_the_same_map() {
     // Refused by the shards' names alone, before the facets' gravity: before the shape is
     // even read (this one is not closed, and that is not what is said).
     dir.write("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    let early = touchdown(
-        dir.path(),
-        &[
-            "site",
-            "open.obj",
-            "--units",
-            "m",
-            "--density",
-            "2000",
-            "--spin-period",
-            "3.3",
-            "--samples",
-            "3000",
-            "--out-dir",
-            "cut",
-        ],
-    );
+    let early = run_site(&dir, &site_args("open.obj", "m", "3.3", "3000", "cut", &[]));
     assert_eq!(early.code, Some(2), "{early}");
     assert!(
         early
@@ -432,23 +417,9 @@ fn a_body_off_its_origin_is_warned_of() {
     let mut sphere = icosphere(RADIUS_M, 2);
     let run = |dir: &TempDir, name: &str| {
         let file = format!("{name}.obj");
-        touchdown(
-            dir.path(),
-            &[
-                "site",
-                &file,
-                "--units",
-                "m",
-                "--density",
-                "2000",
-                "--spin-period",
-                "3.3",
-                "--samples",
-                "200",
-                "--out-dir",
-                name,
-                "--quiet",
-            ],
+        run_site(
+            dir,
+            &site_args(&file, "m", "3.3", "200", name, &["--quiet"]),
         )
     };
     dir.write("centred.obj", &obj(&sphere));
@@ -474,5 +445,35 @@ fn a_body_off_its_origin_is_warned_of() {
             .stdout
             .contains("| centre of mass | (3000.00, 0.00, 0.00) m from the origin"),
         "{moved}"
+    );
+}
+
+/// A map where no facet is a landing site says so plainly: an area of none is "0 m^2".
+#[test]
+fn a_map_without_a_landing_site_says_none() {
+    let dir = TempDir::new("site-none");
+    dir.write("sphere.obj", &obj(&icosphere(RADIUS_M, 1)));
+    // Spun at 200 deg/s, every lander tips over.
+    dir.write(
+        "spin.toml",
+        "[inputs]\nrate_x_deg_s = 200.0\n[simulation]\nt_max_s = 20.0\n",
+    );
+    let period = PERIOD_H.to_string();
+    let run = run_site(
+        &dir,
+        &site_args(
+            "sphere.obj",
+            "m",
+            &period,
+            "200",
+            "map",
+            &["--scenario", "spin.toml", "--quiet"],
+        ),
+    );
+    run.assert_ok();
+    let summary = std::fs::read_to_string(dir.join("map/site.md")).expect("site.md");
+    assert!(
+        summary.contains("**P(stable) >= 0.99 on 0.00 % of the surface** (0 m^2)."),
+        "{summary}"
     );
 }
