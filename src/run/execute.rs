@@ -328,7 +328,8 @@ pub fn warn_untouched(done: &Executed, scenario: &Scenario, at: &str) {
     }
     // The tilt is taken from the ground's normal (MODEL.md 8): on a slope of 45 deg or more
     // a lander released upright already leans that far, and the slope is the likelier cause.
-    let slope = done.untouched_tipped_slope_deg;
+    // Shown rounded down, so that "or more" holds of the value printed.
+    let slope = (done.untouched_tipped_slope_deg * 10.0).floor() / 10.0;
     if tipped > 0 && slope >= 45.0 {
         why.push(format!(
             "{tipped} turned past 90 deg in flight (tipped) before reaching it, all on slopes \

@@ -2,7 +2,8 @@
 //! line that is not blank holds one or two counts and nothing else (`NV NF` or `NV`), a
 //! Wavefront OBJ file (obj.rs) otherwise. No OBJ file starts so (its lines start with a
 //! keyword), so an OBJ file is read as [`read_obj`](super::read_obj) reads it, with the same
-//! mesh or the same message.
+//! mesh or the same message, except that a UTF-8 byte order mark at its very start is read
+//! past here (for either format) and refused there.
 
 use super::error::ShapeError;
 use super::mesh::Mesh;
