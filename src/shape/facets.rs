@@ -25,11 +25,11 @@ pub struct FacetGravity {
     /// in [0, 180]. Above 90 the effective gravity points away from the surface (an overhang,
     /// or a spin that throws things off there); NaN where the effective gravity is zero.
     pub slope_deg: f64,
-    /// The centroid's latitude, deg: spherical, from the mesh frame's x-y plane (the z axis
-    /// is the spin axis in a shape model's convention), in [-90, 90].
+    /// The centroid's latitude, deg: spherical, from the spin's equatorial plane (the spin
+    /// axis at +90; [`latitude_longitude`]), in [-90, 90].
     pub latitude_deg: f64,
-    /// The centroid's longitude, deg, east (counter-clockwise about z) from the mesh frame's
-    /// x axis, in (-180, 180].
+    /// The centroid's longitude, deg, east (counter-clockwise about the spin axis) from the
+    /// spin frame's first axis ([`spin_frame`]), in (-180, 180].
     pub longitude_deg: f64,
 }
 
@@ -51,6 +51,36 @@ pub fn unit_axis(axis: [f64; 3]) -> Result<[f64; 3], ShapeError> {
         )));
     }
     Ok(scale(axis, 1.0 / length))
+}
+
+/// The frame latitudes and longitudes are taken in, for a spin about `spin_axis_unit` (a
+/// unit vector): `[e1, e2, a]`, right-handed, `a` the axis, `e1` the mesh frame's `x` made
+/// perpendicular to it (its `y` where `x` lies within about 6 deg of the axis), `e2 = a x
+/// e1`. For the axis `+z` it is the mesh frame itself.
+#[must_use]
+pub fn spin_frame(spin_axis_unit: [f64; 3]) -> [[f64; 3]; 3] {
+    let a = spin_axis_unit;
+    let across = |v: [f64; 3]| add(v, scale(a, -dot(v, a)));
+    let mut e1 = across([1.0, 0.0, 0.0]);
+    if norm(e1) < 0.1 {
+        e1 = across([0.0, 1.0, 0.0]);
+    }
+    let e1 = scale(e1, 1.0 / norm(e1));
+    [e1, cross(a, e1), a]
+}
+
+/// The latitude and longitude, deg, of the point `r` (m, mesh frame) about the spin axis
+/// `spin_axis_unit`: spherical in [`spin_frame`], the latitude from the spin's equatorial
+/// plane, the longitude east from `e1`. For the axis `+z` exactly, the mesh frame's own
+/// `atan2(z, hypot(x, y))` and `atan2(y, x)`, to the bit.
+#[must_use]
+pub fn latitude_longitude(spin_axis_unit: [f64; 3], r: [f64; 3]) -> (f64, f64) {
+    let [x, y, z] = if spin_axis_unit == [0.0, 0.0, 1.0] {
+        r
+    } else {
+        spin_frame(spin_axis_unit).map(|e| dot(r, e))
+    };
+    (z.atan2(x.hypot(y)).to_degrees(), y.atan2(x).to_degrees())
 }
 
 /// The slope, deg, of a surface with unit outward normal `normal` under the effective
@@ -76,6 +106,7 @@ pub fn facet_gravity(
     let c = g.centroid_m;
     let gravity = poly.field_on_facet(facet).acceleration_m_s2;
     let effective = add(gravity, centrifugal(spin_axis_unit, omega_rad_s, c));
+    let (latitude_deg, longitude_deg) = latitude_longitude(spin_axis_unit, c);
     FacetGravity {
         centroid_m: c,
         normal: g.normal,
@@ -84,8 +115,8 @@ pub fn facet_gravity(
         effective_m_s2: effective,
         effective_magnitude_m_s2: norm(effective),
         slope_deg: slope_deg(g.normal, effective),
-        latitude_deg: c[2].atan2(c[0].hypot(c[1])).to_degrees(),
-        longitude_deg: c[1].atan2(c[0]).to_degrees(),
+        latitude_deg,
+        longitude_deg,
     }
 }
 

@@ -28,7 +28,8 @@ mod vec3;
 
 pub use error::ShapeError;
 pub use facets::{
-    FacetGravity, centrifugal, facet_gravity, facets, facets_told, slope_deg, unit_axis,
+    FacetGravity, centrifugal, facet_gravity, facets, facets_told, latitude_longitude, slope_deg,
+    spin_frame, unit_axis,
 };
 pub use gravity::{Field, G, Polyhedron};
 pub use mesh::{CheckedMesh, DEGENERATE_AREA, Edge, FacetGeometry, MAX_FACETS, MAX_VERTICES, Mesh};

@@ -39,8 +39,10 @@ pub struct SiteFacet {
     pub facet: u32,
     /// Its centroid in the body frame, m.
     pub centroid_m: [f64; 3],
-    /// The centroid's latitude and longitude, deg (spherical, about the body frame's z
-    /// axis; longitude 0 along +x, east positive, in (-180, 180]).
+    /// The centroid's latitude and longitude, deg (spherical, about the spin axis: the body
+    /// frame's z unless `--spin-axis` says otherwise; longitude 0 along +x, or along the x
+    /// made perpendicular to a tilted axis (`shape::spin_frame`), east positive, in
+    /// (-180, 180]).
     pub latitude_deg: f64,
     /// See `latitude_deg`.
     pub longitude_deg: f64,

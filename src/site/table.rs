@@ -115,7 +115,7 @@ fn columns(facets: &[SiteFacet]) -> (Vec<Field>, Vec<ArrayRef>) {
         (
             "latitude_deg",
             "deg",
-            "the centroid's latitude (about the body frame's z axis)",
+            "the centroid's latitude (about the spin axis: the body frame's z unless --spin-axis)",
         ),
         facets.iter().map(|f| Some(f.latitude_deg)),
     );
@@ -125,7 +125,7 @@ fn columns(facets: &[SiteFacet]) -> (Vec<Field>, Vec<ArrayRef>) {
         (
             "longitude_deg",
             "deg",
-            "the centroid's longitude, east from +x, in (-180, 180]",
+            "the centroid's longitude, east from +x (made perpendicular to the spin axis), in (-180, 180]",
         ),
         facets.iter().map(|f| Some(f.longitude_deg)),
     );

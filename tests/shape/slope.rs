@@ -1,10 +1,11 @@
 //! Slopes on a spinning sphere against the closed form, the centrifugal acceleration, and
 //! every facet at once.
 
-use super::{checked, dot, icosphere, norm, scale, sub, unit, uv_sphere};
+use super::{checked, cross, dot, icosphere, norm, scale, sub, unit, uv_sphere};
 use std::f64::consts::PI;
 use touchdown::shape::{
-    FacetGravity, G, Polyhedron, centrifugal, facet_gravity, facets, slope_deg, unit_axis,
+    FacetGravity, G, Polyhedron, centrifugal, facet_gravity, facets, latitude_longitude, slope_deg,
+    spin_frame, unit_axis,
 };
 
 const RHO: f64 = 2000.0;
@@ -84,12 +85,23 @@ fn tilt_deg(f: &FacetGravity) -> f64 {
 /// tilt from radial (the slope is measured from the facet's normal) plus the turn of the
 /// attraction's error at the centroid. Without spin every slope is within the same bound
 /// of 0.
+///
+/// The latitudes are about the spin axis, so a spin about a tilted axis slopes the sphere as
+/// the closed form says at the latitude about that axis (a latitude about the mesh's `z`
+/// would miss it by up to the tilt).
 #[test]
 fn the_icosphere_facets_slope_as_the_closed_form_says() {
     let poly = Polyhedron::new(checked(icosphere(RADIUS, 4)), RHO).unwrap();
     let count = poly.mesh().facet_geometry().len();
+    for axis in [Z, unit_axis([1.0, 2.0, 3.0]).unwrap()] {
+        slopes_about(&poly, count, axis);
+    }
+}
+
+/// `the_icosphere_facets_slope_as_the_closed_form_says` about the spin axis `axis`.
+fn slopes_about(poly: &Polyhedron, count: usize, axis: [f64; 3]) {
     let all: Vec<FacetGravity> = (0..count)
-        .map(|f| facet_gravity(&poly, f, Z, 0.0))
+        .map(|f| facet_gravity(poly, f, axis, 0.0))
         .collect();
     let g0 = G * poly.mass_kg() / (RADIUS * RADIUS);
     for share in SPIN_SHARES {
@@ -99,19 +111,19 @@ fn the_icosphere_facets_slope_as_the_closed_form_says() {
                 .filter(|&f| (all[f].latitude_deg - lat).abs() < 2.0)
                 .min_by(|&a, &b| tilt_deg(&all[a]).total_cmp(&tilt_deg(&all[b])))
                 .unwrap();
-            let site = facet_gravity(&poly, f, Z, omega);
+            let site = facet_gravity(poly, f, axis, omega);
             let p = norm(site.centroid_m);
             let g = 4.0 / 3.0 * PI * G * RHO * p;
             let exact = scale(unit(site.centroid_m), -g);
-            let exact_effective = norm(add(exact, centrifugal(Z, omega, site.centroid_m)));
+            let exact_effective = norm(add(exact, centrifugal(axis, omega, site.centroid_m)));
             let expected = closed_form_deg(g, omega * omega * p, site.latitude_deg);
             let tolerance = tilt_deg(&site)
                 + turn_deg(norm(sub(site.gravity_m_s2, exact)), exact_effective)
                 + 1e-9;
             assert!(
                 (site.slope_deg - expected).abs() <= tolerance,
-                "w^2 R = {share} g, facet {f} at latitude {}: slope {} against {expected} \
-                 (tolerance {tolerance:.3e})",
+                "axis {axis:?}, w^2 R = {share} g, facet {f} at latitude {}: slope {} against \
+                 {expected} (tolerance {tolerance:.3e})",
                 site.latitude_deg,
                 site.slope_deg
             );
@@ -165,12 +177,60 @@ fn centrifugal_latitude_longitude_and_all_facets() {
     assert_eq!(every.len(), 320);
     for (f, site) in every.iter().enumerate() {
         assert_eq!(*site, facet_gravity(&poly, f, spin, 2e-4));
+        // About the spin axis a: the latitude from its equator, the longitude east from the
+        // mesh's x made perpendicular to a.
         let c = site.centroid_m;
-        let lat = (c[2] / norm(c)).asin().to_degrees();
-        let lon = c[1].atan2(c[0]).to_degrees();
-        assert!((site.latitude_deg - lat).abs() < 1e-9 && (site.longitude_deg - lon).abs() < 1e-12);
+        let lat = (dot(c, spin) / norm(c)).asin().to_degrees();
+        let e1 = unit(sub([1.0, 0.0, 0.0], scale(spin, spin[0])));
+        let e2 = cross(spin, e1);
+        let lon = dot(c, e2).atan2(dot(c, e1)).to_degrees();
+        assert!((site.latitude_deg - lat).abs() < 1e-9 && (site.longitude_deg - lon).abs() < 1e-9);
         assert!((-90.0..=90.0).contains(&site.latitude_deg));
         assert!(site.longitude_deg > -180.0 && site.longitude_deg <= 180.0);
+    }
+}
+
+/// The spin frame is right-handed and orthonormal with the axis third; about `+z` the
+/// latitude and longitude are the mesh frame's own, to the bit; an axis near `x` takes its
+/// first axis from `y`.
+#[test]
+fn the_spin_frame_and_its_latitudes() {
+    for axis in [
+        Z,
+        unit_axis([1.0, 2.0, 3.0]).unwrap(),
+        unit_axis([1.0, 0.01, 0.0]).unwrap(),
+        unit_axis([0.0, 0.0, -1.0]).unwrap(),
+    ] {
+        let [e1, e2, a] = spin_frame(axis);
+        assert_eq!(a, axis);
+        for (u, v, want) in [
+            (e1, e1, 1.0),
+            (e2, e2, 1.0),
+            (e1, e2, 0.0),
+            (e1, a, 0.0),
+            (e2, a, 0.0),
+        ] {
+            assert!((dot(u, v) - want).abs() < 1e-15, "{axis:?}");
+        }
+        assert!(
+            norm(sub(cross(e1, e2), a)) < 1e-15,
+            "{axis:?}: not right-handed"
+        );
+        // The axis is latitude 90, e1 is longitude 0, e2 longitude 90.
+        assert!((latitude_longitude(axis, scale(a, 7.0)).0 - 90.0).abs() < 1e-12);
+        let (lat, lon) = latitude_longitude(axis, scale(e1, 3.0));
+        assert!(
+            lat.abs() < 1e-12 && lon.abs() < 1e-12,
+            "{axis:?}: {lat} {lon}"
+        );
+        assert!((latitude_longitude(axis, e2).1 - 90.0).abs() < 1e-12);
+    }
+    // Near x the first axis comes from y, so it is still well defined.
+    assert!(spin_frame(unit_axis([1.0, 0.01, 0.0]).unwrap())[0][1] > 0.99);
+    for r in [[3.0, -4.0, 12.0], [-1.0, 0.0, -2.0], [0.5, 2.5, 0.0]] {
+        let (lat, lon) = latitude_longitude(Z, r);
+        assert_eq!(lat, r[2].atan2(r[0].hypot(r[1])).to_degrees());
+        assert_eq!(lon, r[1].atan2(r[0]).to_degrees());
     }
 }
 
