@@ -2,6 +2,7 @@
 //! hostile counts refused before anything is reserved, and random and mutated files read
 //! without a panic.
 
+use super::Stream;
 use super::plate::{Num, octahedron, plate_a, plate_b};
 use touchdown::shape::{
     MAX_FACETS, MAX_LINE_BYTES, MAX_VERTICES, Polyhedron, parse_plate, parse_shape,
@@ -324,21 +325,6 @@ fn hostile_counts_are_refused_before_anything_is_reserved() {
              line 1"
         )
     );
-}
-
-/// xorshift64*: a seeded stream of test inputs.
-struct Stream(u64);
-
-impl Stream {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
 }
 
 /// Read (by content, and as a plate), check and, if sound, evaluate: an answer and never a

@@ -1,7 +1,7 @@
 //! Meshes refused by the check, each with its message; a sound mesh's geometry; and random
 //! or truncated input that must never panic.
 
-use super::{checked, cube, icosphere, norm};
+use super::{Stream, checked, cube, icosphere, norm};
 use std::f64::consts::PI;
 use touchdown::shape::{Mesh, Polyhedron, parse_obj};
 
@@ -128,21 +128,6 @@ fn a_sound_mesh_has_its_volume_area_and_centre_of_mass() {
     assert!(norm(s.centre_of_mass_m()) <= 1e-13);
     for g in s.facet_geometry() {
         assert!((norm(g.normal) - 1.0).abs() < 1e-15 && super::dot(g.normal, g.centroid_m) > 0.0);
-    }
-}
-
-/// xorshift64*: a seeded stream of test inputs.
-struct Stream(u64);
-
-impl Stream {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
     }
 }
 
