@@ -7,17 +7,34 @@
 /// the `X_B Y_B` plane, counter-clockwise, without collinear points.
 #[must_use]
 pub fn support_polygon(tips_m: &[[f64; 3]]) -> Vec<[f64; 2]> {
-    let mut p: Vec<[f64; 2]> = tips_m.iter().map(|t| [t[0], t[1]]).collect();
-    p.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-    p.dedup();
+    support_hull(tips_m)
+        .into_iter()
+        .map(|i| [tips_m[i][0], tips_m[i][1]])
+        .collect()
+}
+
+/// The footpads of `tips_m` on their support polygon (`support_polygon`), by index, in its
+/// order: counter-clockwise from the lowest `x` (then `y`); of footpads at the same place
+/// seen along `Z_B`, the first. Footpads inside the polygon, or on an edge between two of
+/// its corners, are not in it.
+#[must_use]
+pub fn support_hull(tips_m: &[[f64; 3]]) -> Vec<usize> {
+    let xy = |i: usize| [tips_m[i][0], tips_m[i][1]];
+    let mut p: Vec<usize> = (0..tips_m.len()).collect();
+    p.sort_by(|&a, &b| {
+        let (a, b) = (xy(a), xy(b));
+        a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1]))
+    });
+    p.dedup_by(|b, a| xy(*a) == xy(*b));
     if p.len() < 3 {
         return p;
     }
-    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+    let cross = |o: usize, a: usize, b: usize| {
+        let (o, a, b) = (xy(o), xy(a), xy(b));
         (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
     };
     // Andrew's monotone chain: lower hull left to right, then upper hull right to left.
-    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(2 * p.len());
+    let mut hull: Vec<usize> = Vec::with_capacity(2 * p.len());
     for pass in [p.clone(), p.iter().rev().copied().collect()] {
         let start = hull.len();
         for q in pass {

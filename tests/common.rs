@@ -141,7 +141,21 @@ pub(crate) fn touchdown(dir: &Path, args: &[&str]) -> Run {
 
 /// Column `name` of the Arrow file at `path`, as `f64` (`None` if it has no such column).
 pub(crate) fn arrow_column(path: &Path, name: &str) -> Option<Vec<f64>> {
-    use arrow_array::Array as _;
+    arrow_values::<arrow_array::types::Float64Type>(path, name)
+}
+
+/// Column `name` of the Arrow file at `path`, of unsigned 32-bit integers (`None` if it has
+/// no such column).
+pub(crate) fn arrow_u32s(path: &Path, name: &str) -> Option<Vec<u32>> {
+    arrow_values::<arrow_array::types::UInt32Type>(path, name)
+}
+
+/// Column `name` of the Arrow file at `path`, of the primitive type `T` (`None` if it has
+/// no such column; a panic if it is of another type).
+fn arrow_values<T: arrow_array::ArrowPrimitiveType>(
+    path: &Path,
+    name: &str,
+) -> Option<Vec<T::Native>> {
     let file = std::fs::File::open(path).expect("open the file");
     let reader = arrow_ipc::reader::FileReader::try_new(file, None).expect("an Arrow file");
     let mut out = Vec::new();
@@ -150,9 +164,9 @@ pub(crate) fn arrow_column(path: &Path, name: &str) -> Option<Vec<f64>> {
         let c = b.column_by_name(name)?;
         let c = c
             .as_any()
-            .downcast_ref::<arrow_array::Float64Array>()
-            .expect("Float64");
-        out.extend((0..c.len()).map(|i| c.value(i)));
+            .downcast_ref::<arrow_array::PrimitiveArray<T>>()
+            .unwrap_or_else(|| panic!("{name}: {} values", T::DATA_TYPE));
+        out.extend(c.values().iter().copied());
     }
     Some(out)
 }

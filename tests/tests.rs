@@ -22,6 +22,7 @@ mod interrupt;
 mod lander;
 mod law_inputs;
 mod layers;
+mod leg_numbers;
 mod outcome_rules;
 mod outputs;
 mod paired_sweeps;

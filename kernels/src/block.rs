@@ -102,6 +102,7 @@ pub struct Track<L: Lane> {
     pub met_rate_rad_s: Vec3<L>,
     pub met_x_body: Vec3<L>,
     pub met_z_body: Vec3<L>,
+    /// The user's number of the deepest leg at the first contact (`Params::leg_index`).
     pub met_leg: L,
     pub max_penetration: L,
     pub steps: L,

@@ -144,11 +144,13 @@ pub fn observe<L: Lane, const DAMPERS: bool, const THRUST: bool>(
     if THRUST {
         block.thrust.touched |= touching;
     }
-    // The state at the start of the first contact's step, and its deepest leg.
+    // The state at the start of the first contact's step, and its deepest leg, by the
+    // user's number (the lowest on a tie).
     let first = touching & t.first_contact_s.is_nan();
     if first.to_bitmask() != 0 {
         let (mut leg, mut deepest) = (zero, L::splat(f64::NEG_INFINITY));
-        for (k, step) in block.leg_step.iter().enumerate() {
+        for (k, &i) in p.leg_index.iter().enumerate() {
+            let step = &block.leg_step[i];
             let deeper = step.penetration_m.simd_gt(deepest);
             leg = deeper.select(L::splat(k as f64), leg);
             deepest = deeper.select(step.penetration_m, deepest);

@@ -60,6 +60,9 @@ pub struct Params<L> {
     /// `rigid_body::gyroscopic`).
     pub gyroscopic: Vec3<L>,
     pub legs: Vec<LegParams<L>>,
+    /// The index in `legs` of the user's leg `k` (the reference's `Model::leg_index`): the
+    /// first leg to touch is reported by the user's number.
+    pub leg_index: Vec<usize>,
     /// Edges of the support polygon (indices into `legs`).
     pub edges: Vec<[usize; 2]>,
     pub stiffness_n_per_m: L,

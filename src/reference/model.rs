@@ -93,9 +93,20 @@ pub struct Model {
     pub mass_kg: f64,
     /// Principal moments of inertia about X_B, Y_B, Z_B.
     pub inertia_kg_m2: DVec3,
-    /// Legs in counter-clockwise order about Z_B.
+    /// The legs in the engine's order: counter-clockwise about Z_B by azimuth from -X_B
+    /// (`engine_order`), the order in which the reference and the kernels visit them and
+    /// sum their forces, so that a sample's numbers do not depend on the order in which a
+    /// scenario lists its legs. Outputs number legs as the user does (`leg_number`,
+    /// `by_number`; MODEL.md section 3).
     pub legs: Vec<Leg>,
-    /// Edges of the support polygon: consecutive legs, and the last with the first.
+    /// The user's number of each leg of `legs`: its place in `lander.leg_tips_m`, or with
+    /// the layout keys its place counter-clockwise from `first_leg_azimuth_deg`.
+    pub leg_number: Vec<usize>,
+    /// The index in `legs` of the user's leg `k` (the inverse of `leg_number`).
+    pub leg_index: Vec<usize>,
+    /// Edges of the support polygon, as pairs of indices into `legs`: the convex hull of the
+    /// footpads seen along Z_B, counter-clockwise (`support_edges`). A footpad inside the
+    /// hull is on no edge.
     pub edges: Vec<[usize; 2]>,
     /// The leg-surface contact law, the same for every leg.
     pub contact: Contact,
@@ -152,27 +163,22 @@ impl Model {
             StrutAxes::All(a) => vec![DVec3::from_array(*a); tips.len()],
             StrutAxes::PerLeg(a) => a.iter().map(|p| DVec3::from_array(*p)).collect(),
         };
-        let mut legs: Vec<(f64, Leg)> = tips
+        let legs: Vec<Leg> = tips
             .iter()
             .zip(&axes)
-            .map(|(t, u)| {
-                (
-                    libm::atan2(t.y, t.x),
-                    Leg {
-                        tip_m: *t,
-                        strut_axis: *u,
-                    },
-                )
+            .map(|(t, u)| Leg {
+                tip_m: *t,
+                strut_axis: *u,
             })
             .collect();
-        legs.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let legs: Vec<Leg> = legs.into_iter().map(|(_, l)| l).collect();
-        let n = legs.len();
-        let edges = if n >= 3 {
-            (0..n).map(|i| [i, (i + 1) % n]).collect()
-        } else {
-            Vec::new()
-        };
+        // The engine's order, and the way back to the user's numbers (`Model::legs`).
+        let leg_number = engine_order(&legs);
+        let mut leg_index = vec![0; legs.len()];
+        for (i, &k) in leg_number.iter().enumerate() {
+            leg_index[k] = i;
+        }
+        let legs: Vec<Leg> = leg_number.iter().map(|&k| legs[k]).collect();
+        let edges = support_edges(&legs);
         let d = &s.damper;
         let area_m2 = d.area_cm2 * 1e-4;
         let honeycomb = d.enabled.then(|| {
@@ -207,6 +213,8 @@ impl Model {
             mass_kg: s.lander.mass_kg,
             inertia_kg_m2: DVec3::from_array(s.lander.inertia_kg_m2),
             legs,
+            leg_number,
+            leg_index,
             edges,
             contact: Contact {
                 stiffness_n_per_m: s.surface.stiffness_n_per_m,
@@ -399,6 +407,13 @@ impl Model {
         })
     }
 
+    /// `per_leg` (one value for each of `legs`, in their order) in the user's numbering:
+    /// the `k`-th value is the user's leg `k`'s.
+    #[must_use]
+    pub fn by_number<T: Clone>(&self, per_leg: &[T]) -> Vec<T> {
+        self.leg_index.iter().map(|&i| per_leg[i].clone()).collect()
+    }
+
     /// Largest distance of a footpad from the CG, m.
     #[must_use]
     pub fn leg_reach_m(&self) -> f64 {
@@ -407,6 +422,51 @@ impl Model {
             .map(|l| l.tip_m.length())
             .fold(0.0, f64::max)
     }
+}
+
+/// The engine's order of `legs` (given in the user's order): the user's numbers, sorted by
+/// the footpad's azimuth about Z_B, `atan2(y, x)` in (-180, 180] deg, then by its
+/// coordinates and its strut axis, so that the order depends on the legs alone and not on
+/// how they are listed (legs equal in all of these are interchangeable).
+fn engine_order(legs: &[Leg]) -> Vec<usize> {
+    let key = |l: &Leg| {
+        [
+            libm::atan2(l.tip_m.y, l.tip_m.x),
+            l.tip_m.x,
+            l.tip_m.y,
+            l.tip_m.z,
+            l.strut_axis.x,
+            l.strut_axis.y,
+            l.strut_axis.z,
+        ]
+    };
+    let mut order: Vec<usize> = (0..legs.len()).collect();
+    order.sort_by(|&a, &b| {
+        let (a, b) = (key(&legs[a]), key(&legs[b]));
+        a.iter()
+            .zip(&b)
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    order
+}
+
+/// The edges of the support polygon of `legs`: the convex hull of their footpads seen along
+/// Z_B (`stability::support_hull`), counter-clockwise, each edge a pair of indices into
+/// `legs`, starting at the lowest index on the hull; none for fewer than three footpads
+/// off one line.
+fn support_edges(legs: &[Leg]) -> Vec<[usize; 2]> {
+    let tips: Vec<[f64; 3]> = legs.iter().map(|l| l.tip_m.to_array()).collect();
+    let mut hull = crate::stability::support_hull(&tips);
+    if hull.len() < 3 {
+        return Vec::new();
+    }
+    let first = (0..hull.len()).min_by_key(|&i| hull[i]).unwrap_or(0);
+    hull.rotate_left(first);
+    (0..hull.len())
+        .map(|i| [hull[i], hull[(i + 1) % hull.len()]])
+        .collect()
 }
 
 /// Sets a value of the model's regolith (there is one where a sample draws its values).

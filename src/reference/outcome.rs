@@ -33,7 +33,6 @@
 //!   momentum allows, `|L| / I_min`, with the margin `TURN_MARGIN`.
 
 use super::model::Model;
-use super::regolith::Soil;
 use super::step::{State, StepReport};
 use super::strut::{StrutPeaks, stroke_margin};
 use super::touchdown::{Met, Touchdown};
@@ -161,7 +160,8 @@ pub struct Summary {
     pub touchdown: Option<Touchdown>,
     /// Deepest penetration of a footpad below the local surface (0 if it never touched), m.
     pub max_penetration_m: f64,
-    /// Per-leg results, in the order of `Model::legs`.
+    /// Per-leg results by the user's number: `legs[k]` is the user's leg `k`
+    /// (`Model::leg_number`).
     pub legs: Vec<LegSummary>,
     /// What the control loop did (scenarios with one; boxed, so that the rows of a passive
     /// sweep stay small: a window of them is in memory).
@@ -291,7 +291,7 @@ impl Tracker {
         self.max_penetration = self.max_penetration.max(deepest);
         if contacts > 0 {
             if self.first_contact_s.is_none() {
-                self.met = Some(met(report));
+                self.met = Some(met(model, report));
             }
             self.first_contact_s.get_or_insert(report.t_s);
             self.touched_since_lift_off = true;
@@ -399,7 +399,7 @@ impl Tracker {
     #[must_use]
     pub fn finish(
         &self,
-        soil: Option<&Soil>,
+        model: &Model,
         surface: &Surface,
         outcome: Outcome,
         last: &State,
@@ -426,21 +426,21 @@ impl Tracker {
                 .met
                 .map(|m| Touchdown::of(&m, surface.normal, surface.tangent_u, surface.tangent_v)),
             max_penetration_m: finite_or_zero(self.max_penetration),
-            legs: self
-                .peak_normal
+            legs: model
+                .leg_index
                 .iter()
-                .zip(&last.legs)
-                .zip(&self.struts)
-                .map(|((p, l), strut)| {
-                    let (sinkage_m, soil_absorbed_j) = soil.map_or((0.0, 0.0), |s| {
-                        kernels::regolith::leg_results(
-                            s.exponent,
-                            s.unloading_n_per_m,
-                            l.sinkage_max_m,
-                            l.soil_force_max_n,
-                            l.soil_absorbed_j,
-                        )
-                    });
+                .map(|&i| {
+                    let (p, l, strut) = (&self.peak_normal[i], &last.legs[i], &self.struts[i]);
+                    let (sinkage_m, soil_absorbed_j) =
+                        model.soil.as_ref().map_or((0.0, 0.0), |s| {
+                            kernels::regolith::leg_results(
+                                s.exponent,
+                                s.unloading_n_per_m,
+                                l.sinkage_max_m,
+                                l.soil_force_max_n,
+                                l.soil_absorbed_j,
+                            )
+                        });
                     LegSummary {
                         peak_normal_force_n: finite_or_zero(*p),
                         stroke_m: finite_or_zero(l.stroke_m),
@@ -463,10 +463,11 @@ impl Tracker {
 }
 
 /// The state at the start of the step `report` (its first contact), and its deepest leg
-/// (the lowest index on a tie, as the kernels pick it).
-fn met(report: &StepReport) -> Met {
+/// by the user's number (the lowest on a tie, as the kernels pick it).
+fn met(model: &Model, report: &StepReport) -> Met {
     let (mut first_leg, mut deepest) = (0, f64::NEG_INFINITY);
-    for (k, leg) in report.legs.iter().enumerate() {
+    for (k, &i) in model.leg_index.iter().enumerate() {
+        let leg = &report.legs[i];
         if leg.penetration_m > deepest {
             (first_leg, deepest) = (k, leg.penetration_m);
         }

@@ -134,7 +134,7 @@ pub fn run_to_end(
         }
         observe(&report);
         if let Some(outcome) = tracker.observe(model, &surface, &report, &state) {
-            let mut summary = tracker.finish(model.soil.as_ref(), &surface, outcome, &state);
+            let mut summary = tracker.finish(model, &surface, outcome, &state);
             summary.judge(model);
             if let Some((m, c)) = &mut control {
                 summary.control = Some(Box::new(c.finish(m, state.thrust.event_in_s)));

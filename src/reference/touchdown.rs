@@ -16,7 +16,8 @@ pub struct Met {
     pub x_body: DVec3,
     /// `Z_B` in I.
     pub z_body: DVec3,
-    /// The leg that touched first: the deepest on that step (the lowest index on a tie).
+    /// The leg that touched first: the deepest on that step, by the user's number (the
+    /// lowest on a tie; `Model::leg_number`).
     pub first_leg: usize,
 }
 

@@ -37,7 +37,7 @@ pub struct Sketch {
     pub bottom: Vec<DVec3>,
     /// The body's top octagon.
     pub top: Vec<DVec3>,
-    /// The legs, in the model's order.
+    /// The legs, by the user's number (`Model::leg_number`).
     pub legs: Vec<LegSketch>,
     /// Radius of the footpad discs, m.
     pub footpad_radius_m: f64,
@@ -71,9 +71,10 @@ impl Sketch {
         let top = (0..8).map(|k| corner(k, z_top)).collect();
         let strut_length = 0.55 * cg_height;
         let legs = model
-            .legs
+            .leg_index
             .iter()
-            .map(|l| {
+            .map(|&i| {
+                let l = &model.legs[i];
                 let hip = l.tip_m - strut_length * l.strut_axis;
                 let mount = *bottom
                     .iter()

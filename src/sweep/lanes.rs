@@ -34,6 +34,7 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
                 strut_axis: v(l.strut_axis),
             })
             .collect(),
+        leg_index: m.leg_index.clone(),
         edges: m.edges.clone(),
         stiffness_n_per_m: lane(m.contact.stiffness_n_per_m),
         damping_n_s_per_m: lane(m.contact.damping_n_s_per_m),
@@ -161,10 +162,11 @@ pub(super) fn lane_summary<L: Lane>(
             Touchdown::of(&met, normal, v3(&s.tangent_u), v3(&s.tangent_v))
         }),
         max_penetration_m: finite_or_zero(at(&t.max_penetration)),
-        legs: block
-            .legs
+        legs: model
+            .leg_index
             .iter()
-            .map(|l| {
+            .map(|&i| {
+                let l = &block.legs[i];
                 let (sinkage_m, soil_absorbed_j) = soil.map_or((0.0, 0.0), |s| {
                     kernels::regolith::leg_results(
                         at(&s.exponent),

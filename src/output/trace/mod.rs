@@ -120,7 +120,8 @@ fn row(model: &Model, r: &StepReport, out: &mut Vec<f64>) {
         rate.y,
         rate.z,
     ]);
-    for l in &r.legs {
+    for &i in &model.leg_index {
+        let l = &r.legs[i];
         out.extend_from_slice(&[
             l.tip_m.x,
             l.tip_m.y,
