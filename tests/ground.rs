@@ -79,6 +79,91 @@ fn a_regolith_sweep_writes_footprints_and_the_soil_s_values() {
     );
 }
 
+/// Gentle level touchdowns on regolith: a fall of 0.05-0.15 m/s (`sqrt(2 g h)`) onto
+/// level ground, no velocity errors, the default attitude errors and rates.
+const GENTLE: &str = "[surface]\nkind = \"regolith\"\n\
+    [surface.regolith]\n{SOIL}\n\
+    [inputs]\nslope_deg = 0.0\n\
+    release_height_m = { dist = \"uniform\", min = 0.0744, max = 0.670 }\n\
+    velocity_error_x_m_s = 0.0\nvelocity_error_y_m_s = 0.0\nvelocity_error_z_m_s = 0.0\n\
+    [simulation]\nt_max_s = 60.0\n";
+
+#[test]
+fn soils_of_any_exponent_and_unloading_modulus_never_give_energy() {
+    // 400 gentle touchdowns on soils with n drawn on 0.5-1.3 and k_u on 3e5-8e6 Pa/m
+    // (MODEL.md 5.1's range of n; k_u below and up to the default): no leg's soil keeps a
+    // negative energy, and no more landers end `bouncing` than on the default soil (n = 1,
+    // k_u = 8e6), the same samples: none. With an unloading line of slope A k_u alone,
+    // 578 of the 1,600 legs' energies were negative (down to -0.35 J) and 138 landers
+    // ended bouncing.
+    let dir = TempDir::new("ground-soil-energy");
+    let drawn = "bekker_n = { dist = \"uniform\", min = 0.5, max = 1.3 }\n\
+                 unloading_modulus_pa_per_m = { dist = \"uniform\", min = 3.0e5, max = 8.0e6 }";
+    dir.write("drawn.toml", &GENTLE.replace("{SOIL}", drawn));
+    dir.write(
+        "default.toml",
+        &GENTLE.replace(
+            "{SOIL}",
+            "bekker_n = 1.0\nunloading_modulus_pa_per_m = 8.0e6",
+        ),
+    );
+    for name in ["drawn", "default"] {
+        let run = touchdown(
+            dir.path(),
+            &[
+                "sweep",
+                "--quiet",
+                "--scenario",
+                &format!("{name}.toml"),
+                "--samples",
+                "400",
+                "--out",
+                &format!("{name}.arrow"),
+            ],
+        );
+        assert_eq!(run.code, Some(0), "{run}");
+    }
+    let bounces = |name: &str| {
+        use arrow_array::Array as _;
+        let file = std::fs::File::open(dir.join(&format!("{name}.arrow"))).unwrap();
+        let mut n = 0;
+        for b in arrow_ipc::reader::FileReader::try_new(file, None).unwrap() {
+            let b = b.unwrap();
+            let o = b.column_by_name("outcome").unwrap();
+            let o = o
+                .as_any()
+                .downcast_ref::<arrow_array::StringArray>()
+                .unwrap();
+            n += (0..o.len()).filter(|i| o.value(*i) == "bouncing").count();
+        }
+        n
+    };
+    let drawn = dir.join("drawn.arrow");
+    let mut negative = Vec::new();
+    for k in 0..4 {
+        let energy = arrow_column(&drawn, &format!("leg{k}_soil_absorbed_j")).unwrap();
+        negative.extend(
+            energy
+                .iter()
+                .enumerate()
+                .filter(|(_, e)| **e < 0.0)
+                .map(|(i, e)| (i, k, *e)),
+        );
+    }
+    assert!(
+        negative.is_empty(),
+        "{} legs kept a negative energy (sample, leg, J): {:?}",
+        negative.len(),
+        &negative[..negative.len().min(10)]
+    );
+    assert!(
+        bounces("drawn") <= bounces("default"),
+        "{} landers bounced on the drawn soils, {} on the default",
+        bounces("drawn"),
+        bounces("default")
+    );
+}
+
 #[test]
 fn a_regolith_trace_prints_the_footprints_of_its_sweep_row() {
     let dir = TempDir::new("ground-regolith-trace");

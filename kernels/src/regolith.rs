@@ -8,9 +8,10 @@ use crate::vec3::Vec3;
 /// The soil's push on each footpad `penetration` below the surface, before damping (the
 /// lanes where `contact` is false give what they give: the caller drops them): on the
 /// loading curve beyond the deepest sinkage so far (which it deepens), else on the
-/// unloading line through it, never pulling. Updates the footprint. The power is taken
-/// lane by lane (`libm::pow`, as the reference), only in lanes on the loading curve and
-/// only in a step where some lane is: a footpad at rest is on its unloading line.
+/// unloading line through it (`unloading_slope`), never pulling. Updates the footprint.
+/// The power is taken lane by lane (`libm::pow`, as the reference), only in lanes on the
+/// loading curve and only in a step where some lane is: a footpad at rest is on its
+/// unloading line.
 #[inline(always)]
 pub fn soil_force<L: Lane>(
     soil: &SoilParams<L>,
@@ -19,8 +20,7 @@ pub fn soil_force<L: Lane>(
     sinkage_max_m: &mut L,
     soil_force_max_n: &mut L,
 ) -> L {
-    let unloading = soil
-        .unloading_n_per_m
+    let unloading = unloading_slope_lanes(soil, *sinkage_max_m, *soil_force_max_n)
         .mul_neg_add(*sinkage_max_m - penetration, *soil_force_max_n)
         .max(L::splat(0.0));
     let loading = penetration.simd_gt(*sinkage_max_m) & contact;
@@ -38,6 +38,20 @@ pub fn soil_force<L: Lane>(
     *sinkage_max_m = loading.select(penetration, *sinkage_max_m);
     *soil_force_max_n = loading.select(f, *soil_force_max_n);
     loading.select(f, unloading)
+}
+
+/// `unloading_slope` of each lane (where no footprint is pressed yet, `z_m = 0`, the
+/// soil's `A k_u`).
+#[inline(always)]
+fn unloading_slope_lanes<L: Lane>(
+    soil: &SoilParams<L>,
+    sinkage_max_m: L,
+    soil_force_max_n: L,
+) -> L {
+    let floor = soil.exponent.max(L::splat(1.0)) * soil_force_max_n / sinkage_max_m;
+    sinkage_max_m
+        .simd_gt(L::splat(0.0))
+        .select(soil.unloading_n_per_m.max(floor), soil.unloading_n_per_m)
 }
 
 /// The passive earth pressure on the side of each footpad `penetration` below the surface
@@ -90,17 +104,46 @@ pub fn footprint<L: Lane>(
     *soil_force_max_n = elsewhere.select(zero, *soil_force_max_n);
 }
 
-/// The depth of a footprint of deepest sinkage `z_m` (force `F_m`) once the footpad has
-/// lifted: where the unloading line meets zero force (0 if it meets the surface first), m.
-/// (Of one lane, outside the step: the reference's `permanent_sinkage`.)
+/// The slope of the unloading line through a footprint's deepest point `(z_m, F_m)`, N/m
+/// (of one lane; the kernels take it lane by lane, in the same order): the soil's
+/// `A k_u`, but never less than `max(1, n) F_m / z_m`, the loading curve's chord to the
+/// deepest point (`n <= 1`) or its tangent there (`n > 1`), whichever is steeper. The line
+/// then never rises above the loading curve, so the soil never gives back more work than
+/// the loading took, for any `n` and `k_u` (MODEL.md section 5.1); where `A k_u` is the
+/// steeper, it is the line as the soil's modulus gives it. `A k_u` where no footprint is
+/// pressed yet (`z_m = 0`).
 #[must_use]
-pub fn permanent_sinkage(unloading_n_per_m: f64, sinkage_max_m: f64, soil_force_max_n: f64) -> f64 {
-    (sinkage_max_m - soil_force_max_n / unloading_n_per_m).max(0.0)
+pub fn unloading_slope(
+    exponent: f64,
+    unloading_n_per_m: f64,
+    sinkage_max_m: f64,
+    soil_force_max_n: f64,
+) -> f64 {
+    if sinkage_max_m > 0.0 {
+        unloading_n_per_m.max(exponent.max(1.0) * soil_force_max_n / sinkage_max_m)
+    } else {
+        unloading_n_per_m
+    }
+}
+
+/// The depth of a footprint of deepest sinkage `z_m` (force `F_m`) once the footpad has
+/// lifted: where the unloading line (`unloading_slope`) meets zero force, at or below the
+/// surface, m. (Of one lane, outside the step: the reference's `permanent_sinkage`.)
+#[must_use]
+pub fn permanent_sinkage(
+    exponent: f64,
+    unloading_n_per_m: f64,
+    sinkage_max_m: f64,
+    soil_force_max_n: f64,
+) -> f64 {
+    let slope = unloading_slope(exponent, unloading_n_per_m, sinkage_max_m, soil_force_max_n);
+    (sinkage_max_m - soil_force_max_n / slope).max(0.0)
 }
 
 /// The energy a footprint of deepest sinkage `z_m` (force `F_m`) took for good: the work
-/// along the loading curve, `F_m z_m / (n + 1)`, less what the unloading line gives back, J
-/// (of one lane: the reference's `absorbed`).
+/// along the loading curve, `F_m z_m / (n + 1)`, less what the unloading line gives back,
+/// `F_m (z_m - z_p) / 2`, never negative (`unloading_slope`), J (of one lane: the
+/// reference's `absorbed`).
 #[must_use]
 pub fn absorbed(
     exponent: f64,
@@ -109,9 +152,8 @@ pub fn absorbed(
     soil_force_max_n: f64,
 ) -> f64 {
     let loading = soil_force_max_n * sinkage_max_m / (exponent + 1.0);
-    let z_p = permanent_sinkage(unloading_n_per_m, sinkage_max_m, soil_force_max_n);
-    let f_surface = (soil_force_max_n - unloading_n_per_m * sinkage_max_m).max(0.0);
-    let given_back = 0.5 * (soil_force_max_n + f_surface) * (sinkage_max_m - z_p);
+    let z_p = permanent_sinkage(exponent, unloading_n_per_m, sinkage_max_m, soil_force_max_n);
+    let given_back = 0.5 * soil_force_max_n * (sinkage_max_m - z_p);
     loading - given_back
 }
 
@@ -127,7 +169,7 @@ pub fn leg_results(
     soil_absorbed_j: f64,
 ) -> (f64, f64) {
     (
-        permanent_sinkage(unloading_n_per_m, sinkage_max_m, soil_force_max_n),
+        permanent_sinkage(exponent, unloading_n_per_m, sinkage_max_m, soil_force_max_n),
         soil_absorbed_j + absorbed(exponent, unloading_n_per_m, sinkage_max_m, soil_force_max_n),
     )
 }

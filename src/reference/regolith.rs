@@ -51,7 +51,7 @@ impl Soil {
 
 /// The soil's push on a footpad `penetration > 0` below the surface, before damping: on
 /// the loading curve beyond the deepest sinkage so far (which it deepens), else on the
-/// unloading line through it, never pulling. Updates the footprint.
+/// unloading line through it (`unloading_slope`), never pulling. Updates the footprint.
 #[inline]
 pub fn soil_force(
     soil: &Soil,
@@ -65,8 +65,23 @@ pub fn soil_force(
         *soil_force_max_n = f;
         f
     } else {
-        (*soil_force_max_n - soil.unloading_n_per_m * (*sinkage_max_m - penetration)).max(0.0)
+        let slope = unloading_slope(soil, *sinkage_max_m, *soil_force_max_n);
+        (*soil_force_max_n - slope * (*sinkage_max_m - penetration)).max(0.0)
     }
+}
+
+/// The slope of the unloading line through the deepest point `(z_m, F_m)`, N/m: `A k_u`,
+/// but never less than `max(1, n) F_m / z_m` (the loading curve's chord, or for `n > 1`
+/// its tangent, at the deepest point), so that the line never rises above the loading
+/// curve and the soil never gives back more than it took (MODEL.md section 5.1).
+#[must_use]
+pub fn unloading_slope(soil: &Soil, sinkage_max_m: f64, soil_force_max_n: f64) -> f64 {
+    kernels::regolith::unloading_slope(
+        soil.exponent,
+        soil.unloading_n_per_m,
+        sinkage_max_m,
+        soil_force_max_n,
+    )
 }
 
 /// The passive earth pressure on the side of a footpad `penetration` below the surface
@@ -101,15 +116,20 @@ pub fn footprint(
 }
 
 /// The depth of the footprint once the footpad has lifted: where the unloading line from
-/// `(z_m, F_m)` meets zero force (0 if it meets the surface first), m.
+/// `(z_m, F_m)` meets zero force, at or below the surface, m.
 #[must_use]
 pub fn permanent_sinkage(soil: &Soil, sinkage_max_m: f64, soil_force_max_n: f64) -> f64 {
-    kernels::regolith::permanent_sinkage(soil.unloading_n_per_m, sinkage_max_m, soil_force_max_n)
+    kernels::regolith::permanent_sinkage(
+        soil.exponent,
+        soil.unloading_n_per_m,
+        sinkage_max_m,
+        soil_force_max_n,
+    )
 }
 
 /// The energy a footprint of deepest sinkage `z_m` (force `F_m`) took from the lander for
 /// good: the work along the loading curve, `F_m z_m / (n + 1)`, less what the unloading line
-/// gives back (a triangle, or a trapezoid where it reaches the surface with force left), J.
+/// gives back (the triangle `F_m (z_m - z_p) / 2`), never negative, J.
 #[must_use]
 pub fn absorbed(soil: &Soil, sinkage_max_m: f64, soil_force_max_n: f64) -> f64 {
     kernels::regolith::absorbed(
