@@ -108,7 +108,9 @@ pub fn envelope(path: &Path, settings: &Settings) -> anyhow::Result<Envelope> {
             })
             .collect();
     }
+    let asked = crate::output::sweep::samples_asked(|k| schema.metadata().get(k));
     Ok(Envelope {
+        interrupted: crate::output::sweep::interrupted_note(path, s.rows, asked),
         path: path.to_path_buf(),
         x,
         y,

@@ -54,6 +54,9 @@ fn boundary_cells(b: Allowable, x: &Axis) -> (String, String) {
 pub fn markdown(e: &Envelope) -> String {
     let mut t = String::new();
     let _ = writeln!(t, "# touchdown envelope: {}\n", e.path.display());
+    if let Some(note) = &e.interrupted {
+        let _ = writeln!(t, "**{note}.**\n");
+    }
     let _ = write!(
         t,
         "{} samples, seed {}: {} in the panels",

@@ -56,11 +56,14 @@ pub(crate) fn envelope_chart(out: &Path, e: &Envelope) -> anyhow::Result<()> {
         title
             .titled(
                 &format!(
-                    "Touchdown envelope: {}, {} of {} samples, seed {}",
+                    "Touchdown envelope: {}, {} of {} samples, seed {}{}",
                     e.path.display(),
                     e.samples(),
                     e.rows,
-                    e.seed
+                    e.seed,
+                    e.interrupted
+                        .as_ref()
+                        .map_or(String::new(), |_| " (an interrupted sweep)".to_string())
                 ),
                 (FONT, 20),
             )

@@ -72,8 +72,13 @@ impl Sweep {
             tips_m,
             dampers,
             about: format!(
-                "{} samples, seed {}",
-                t.rows,
+                "{}, seed {}",
+                // A file short of its samples: an interrupted sweep's.
+                match crate::output::sweep::samples_asked(|k| t.meta.get(k)) {
+                    Some(asked) if (t.rows as u64) < asked =>
+                        format!("{} of {asked} samples (an interrupted sweep)", t.rows),
+                    _ => format!("{} samples", t.rows),
+                },
                 t.meta.get("touchdown.seed").map_or("?", String::as_str)
             ),
         })
