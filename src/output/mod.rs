@@ -213,9 +213,17 @@ impl Drop for AtomicFile {
 
 /// Writes `text` to `path`, complete or not at all (a temporary file renamed once whole).
 pub fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
-    use std::io::Write;
+    write_with(path, |out| out.write_all(text.as_bytes()))
+}
+
+/// Writes to `path` what `write` writes as it goes (a table too large to hold as one
+/// string), complete or not at all.
+pub fn write_with(
+    path: &Path,
+    write: impl FnOnce(&mut Out) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
     let (file, mut out) = AtomicFile::create(path)?;
-    out.write_all(text.as_bytes())
+    write(&mut out)
         .and_then(|()| out.flush())
         .map_err(|e| cannot_write(path, e))?;
     file.commit(out)

@@ -16,7 +16,7 @@ use crate::output::read::{format_of, open};
 use anyhow::{anyhow, bail};
 use std::path::{Path, PathBuf};
 
-pub(crate) use envelope::envelope_chart;
+pub(crate) use envelope::{envelope_chart, envelope_picture_size};
 pub use sensitivity::sensitivity_chart;
 pub(crate) use study::study_chart;
 
