@@ -23,6 +23,7 @@ mod lander;
 mod law_inputs;
 mod layers;
 mod outcome_rules;
+mod output_sets;
 mod outputs;
 mod paired_sweeps;
 mod parameters;

@@ -32,6 +32,16 @@ pub fn interrupted_path(out: &Path) -> PathBuf {
     out.with_file_name(name)
 }
 
+/// Refuses a sweep's output `out` as `check_output_path` does, and where the file an
+/// interrupted run leaves beside it (`interrupted_path`) would take an input's name.
+pub fn check_sweep_output_path(out: &Path) -> anyhow::Result<()> {
+    check_output_path(out)?;
+    if out.as_os_str() == "-" {
+        return Ok(());
+    }
+    inputs::refuse_input_beside(out, &interrupted_path(out), "an interrupted sweep's file")
+}
+
 /// A field with its unit (`"1"` for dimensionless) and a description in its metadata.
 #[must_use]
 pub fn field(name: &str, data_type: DataType, unit: &str, description: &str) -> Field {

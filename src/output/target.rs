@@ -1,8 +1,8 @@
 //! Where an output goes and whether it may go there: standard output, a device written
 //! into, or a regular file written under a temporary name beside it (`PATH.partial`); the
 //! checks of an output path made before any work (a folder that exists, not a folder
-//! itself, none of the command's inputs); and the temporary files being written, removed
-//! when a signal ends the process.
+//! itself, none of the command's inputs, nor its temporary name one); and the temporary
+//! files being written, removed when a signal ends the process.
 
 use super::inputs;
 use std::path::{Path, PathBuf};
@@ -95,7 +95,8 @@ pub(super) fn target_of(path: &Path) -> anyhow::Result<Target> {
 }
 
 /// Refuses an output path whose folder is missing, that names a folder or that is one of
-/// the command's inputs (`inputs::declare`), before any work. `-` (standard output) and
+/// the command's inputs (`inputs::declare`), or whose temporary name is one, before any
+/// work. `-` (standard output) and
 /// existing files of any kind other than folders are accepted.
 pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
     if path.as_os_str() == "-" {
@@ -108,25 +109,30 @@ pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
         anyhow::bail!("output path {} is a folder, not a file", path.display());
     }
     if std::fs::metadata(path).is_ok() {
-        return inputs::refuse_input_as_output(path);
+        inputs::refuse_input_as_output(path)?;
+    } else {
+        let parent = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        if parent.exists() && !parent.is_dir() {
+            anyhow::bail!(
+                "cannot write output file {}: {} is a file, not a folder",
+                path.display(),
+                parent.display()
+            );
+        }
+        if !parent.is_dir() {
+            anyhow::bail!(
+                "cannot write output file {}: folder {} does not exist",
+                path.display(),
+                parent.display()
+            );
+        }
     }
-    let parent = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if parent.exists() && !parent.is_dir() {
-        anyhow::bail!(
-            "cannot write output file {}: {} is a file, not a folder",
-            path.display(),
-            parent.display()
-        );
-    }
-    if !parent.is_dir() {
-        anyhow::bail!(
-            "cannot write output file {}: folder {} does not exist",
-            path.display(),
-            parent.display()
-        );
+    // The temporary name it is written under is emptied first: not an input either.
+    if let Target::Regular { partial, .. } = target_of(path)? {
+        inputs::refuse_input_beside(path, &partial, "its unfinished file")?;
     }
     Ok(())
 }
