@@ -3,6 +3,7 @@
 
 use super::print::print_out;
 use crate::envelope::{DEFAULT_X, DEFAULT_Y, Settings};
+use crate::output::OutputSet;
 use anyhow::{anyhow, bail};
 use std::path::{Path, PathBuf};
 
@@ -163,9 +164,12 @@ pub fn run(args: &EnvelopeArgs) -> anyhow::Result<()> {
         dir.join(format!("{stem}-envelope.png")),
         dir.join(format!("{stem}-envelope.csv")),
     );
+    // The picture and the table are one set, reserved before the samples are read.
+    let set = OutputSet::reserve(&[csv.clone(), png.clone()])?;
     let e = checked.build(|panels| fits(args, panels, samples))?;
     crate::output::write_with(&csv, |out| crate::envelope::write_csv(&e, out))?;
     crate::plot::envelope_chart(&png, &e)?;
+    set.commit()?;
     print_out(
         "the envelope",
         &format!(

@@ -1,9 +1,9 @@
 //! No output is an input of the same command: a command declares the files it reads
 //! (`declare`), and every output it opens afterwards (`AtomicFile::create`,
-//! `check_output_path`, standard output) is refused when it is one of them, whether named
-//! the same way, through a symbolic link or as another hard link of the same file; and so
-//! is an output whose temporary file (or an interrupted sweep's file) would take an
-//! input's name.
+//! `check_output_path`, `OutputSet::reserve`, standard output) is refused when it is one of
+//! them, whether named the same way, through a symbolic link or as another hard link of
+//! the same file; and so is an output whose temporary file (or an interrupted sweep's file)
+//! would take an input's name.
 
 use anyhow::bail;
 use std::os::unix::fs::MetadataExt;

@@ -8,6 +8,7 @@ mod lock;
 pub mod merge;
 pub mod read;
 pub mod resume;
+pub mod set;
 pub mod sweep;
 mod target;
 pub mod trace;
@@ -18,6 +19,7 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 pub use lock::FolderLock;
+pub use set::OutputSet;
 use target::{Target, target_of, unfinished};
 pub use target::{check_output_path, remove_unfinished};
 
@@ -88,12 +90,16 @@ pub type Out = BufWriter<Sink>;
 ///
 /// One run writes a regular file at a time: the temporary file stays locked until it is
 /// renamed or removed, and a second run to the same path is refused, naming the first.
+/// A file of an `OutputSet` is written into the temporary file the set reserved, and
+/// `commit` leaves it there for the set to move into place with the others.
 pub struct AtomicFile {
     target: Target,
     committed: bool,
     /// The lock on the temporary file of a regular output, released after it is renamed
     /// or removed (never before: the name could then be another run's file).
     lock: Option<File>,
+    /// Whether it is a file of an `OutputSet`, which renames or removes it.
+    in_set: bool,
 }
 
 impl AtomicFile {
@@ -101,6 +107,15 @@ impl AtomicFile {
     /// path when its folder does not exist or it cannot be written.
     pub fn create(path: &Path) -> anyhow::Result<(AtomicFile, Out)> {
         check_output_path(path)?;
+        if let Some((path, partial, file)) = set::claim(path)? {
+            let handle = AtomicFile {
+                target: Target::Regular { path, partial },
+                committed: false,
+                lock: None,
+                in_set: true,
+            };
+            return Ok((handle, BufWriter::with_capacity(1 << 20, Sink::File(file))));
+        }
         let target = target_of(path)?;
         let mut lock = None;
         let sink = match &target {
@@ -124,6 +139,7 @@ impl AtomicFile {
             target,
             committed: false,
             lock,
+            in_set: false,
         };
         Ok((handle, BufWriter::with_capacity(1 << 20, sink)))
     }
@@ -199,9 +215,13 @@ impl AtomicFile {
             (sink, rename_to, &self.target)
         {
             file.sync_all().map_err(context)?;
-            std::fs::rename(partial, path).map_err(|e| {
-                anyhow::anyhow!("cannot move the finished file onto {}: {e}", path.display())
-            })?;
+            if self.in_set {
+                set::written(partial);
+            } else {
+                std::fs::rename(partial, path).map_err(|e| {
+                    anyhow::anyhow!("cannot move the finished file onto {}: {e}", path.display())
+                })?;
+            }
         }
         self.committed = true;
         Ok(())
@@ -210,6 +230,10 @@ impl AtomicFile {
 
 impl Drop for AtomicFile {
     fn drop(&mut self) {
+        // A file of a set is the set's to remove.
+        if self.in_set {
+            return;
+        }
         if let Target::Regular { partial, .. } = &self.target {
             if !self.committed {
                 let _ = std::fs::remove_file(partial);
