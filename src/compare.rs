@@ -21,6 +21,9 @@ struct Outcomes {
     /// Whether the sweep has a control loop (a `propellant_kg` column): only then can a
     /// lander end `held`.
     controlled: bool,
+    /// What to say of the file where it holds fewer samples than it asked for: an
+    /// interrupted sweep's (`output::sweep::interrupted_note`).
+    interrupted: Option<String>,
 }
 
 fn read(path: &Path) -> anyhow::Result<Outcomes> {
@@ -35,6 +38,7 @@ fn read(path: &Path) -> anyhow::Result<Outcomes> {
         .cloned()
         .ok_or_else(|| anyhow!("{}: no touchdown.engine", path.display()))?;
     let controlled = file.schema().field_with_name("propellant_kg").is_ok();
+    let asked = crate::output::sweep::samples_asked(|k| meta.get(k));
     let mut rows = Vec::new();
     for b in file.batches() {
         let b = b?;
@@ -47,6 +51,7 @@ fn read(path: &Path) -> anyhow::Result<Outcomes> {
     Ok(Outcomes {
         seed,
         engine,
+        interrupted: crate::output::sweep::interrupted_note(path, rows.len() as u64, asked),
         rows,
         controlled,
     })
@@ -102,13 +107,24 @@ pub fn compare(a: &Path, b: &Path) -> anyhow::Result<String> {
             y.engine
         );
     }
+    // What to say of an interrupted sweep's file among them.
+    let notes: String = [(a, &x), (b, &y)]
+        .iter()
+        .filter_map(|(p, o)| Some(format!("{}: {}", p.display(), o.interrupted.as_ref()?)))
+        .collect::<Vec<_>>()
+        .join("; ");
     if x.rows.len() != y.rows.len() || x.rows.iter().zip(&y.rows).any(|(p, q)| p.0 != q.0) {
         bail!(
-            "{} ({} samples) and {} ({} samples) do not hold the same sample indices",
+            "{} ({} samples) and {} ({} samples) do not hold the same sample indices{}",
             a.display(),
             x.rows.len(),
             b.display(),
-            y.rows.len()
+            y.rows.len(),
+            if notes.is_empty() {
+                String::new()
+            } else {
+                format!(" ({notes})")
+            }
         );
     }
     let n = x.rows.len() as u64;
@@ -134,6 +150,9 @@ pub fn compare(a: &Path, b: &Path) -> anyhow::Result<String> {
         b.display(),
         x.seed
     );
+    if !notes.is_empty() {
+        let _ = writeln!(t, "**{notes}.**\n");
+    }
     let _ = writeln!(
         t,
         "## Outcome shares\n\n| outcome | A | B | B − A | 95 % interval, paired | 95 % interval, \

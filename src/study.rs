@@ -255,6 +255,13 @@ struct Columns {
     columns: Vec<ArrayRef>,
 }
 
+/// The study's own files in its folder `dir`, beside the values' sweeps: the table
+/// (Arrow), its Markdown and its picture.
+#[must_use]
+pub fn table_files(dir: &Path) -> [PathBuf; 3] {
+    ["study.arrow", "study.md", "study.png"].map(|f| dir.join(f))
+}
+
 /// Writes the study's table to `path` (Arrow IPC file).
 pub fn write_table(path: &Path, rows: &[Row], about: &About<'_>) -> anyhow::Result<()> {
     use arrow_array::RecordBatch;

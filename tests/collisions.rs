@@ -22,7 +22,7 @@ fn start(dir: &TempDir, args: &[&str]) -> Child {
 }
 
 /// Checks that a run succeeded (a sweep's banner on stderr is no failure).
-trait Done {
+pub(crate) trait Done {
     fn assert_done(&self);
 }
 

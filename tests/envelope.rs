@@ -569,3 +569,60 @@ fn azimuth_splits_each_band_into_leg_and_side_downhill() {
         }
     }
 }
+
+#[test]
+fn panels_too_many_for_one_command_are_refused_not_aborted() {
+    let dir = TempDir::new("envelope-size");
+    sweep(&dir, SHORT, "300", "m.arrow");
+    let bands: Vec<String> = (0..=45).map(|d| d.to_string()).collect();
+    let before = dir.entries();
+    // Run under an address-space limit of 2 GB, as on a smaller machine, where an
+    // allocation past it aborts: 90 panels of a million cells are refused before any.
+    let run = std::process::Command::new("sh")
+        .args([
+            "-c",
+            &format!(
+                "ulimit -v 2000000; exec {} envelope m.arrow --bins 1000,1000 --slope-bands {} \
+                 --azimuth",
+                crate::common::BIN,
+                bands.join(",")
+            ),
+        ])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(
+            "--bins 1000,1000 with --slope-bands of 45 bands and --azimuth: 90 panels of 1000 x \
+             1000 cells, 90000000 cells in all (about"
+        ) && stderr.contains("at most 1,000,000 cells in all panels together"),
+        "{stderr}"
+    );
+    assert_eq!(dir.entries(), before);
+    // A picture of too many panels, each of one cell.
+    let bands: Vec<String> = (0..=900)
+        .map(|d| format!("{}", f64::from(d) / 10.0))
+        .collect();
+    let run = touchdown(
+        dir.path(),
+        &[
+            "envelope",
+            "m.arrow",
+            "--bins",
+            "1,1",
+            "--slope-bands",
+            &bands.join(","),
+            "--azimuth",
+        ],
+    );
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(
+        run.stderr
+            .contains("1800 panels of 1 x 1 cells: a picture of")
+            && run.stderr.contains("pixels a picture may have"),
+        "{run}"
+    );
+    assert_eq!(dir.entries(), before);
+}

@@ -254,3 +254,36 @@ fn sensitivity_refuses_a_sweep_without_the_design() {
         assert!(!dir.join("b.arrow").exists());
     }
 }
+
+#[test]
+fn sensitivity_says_a_file_is_an_interrupted_sweep() {
+    let dir = TempDir::new("sensitivity-interrupted");
+    dir.write("d.toml", &design());
+    let (code, stderr) = crate::interrupt::interrupt(
+        &dir,
+        &[
+            "sweep",
+            "--scenario",
+            "d.toml",
+            "--samples",
+            "300000",
+            "--out",
+            "s.arrow",
+        ],
+        "s.arrow",
+        "INT",
+    );
+    assert_eq!(code, Some(130), "{stderr}");
+    let run = touchdown(
+        dir.path(),
+        &["sensitivity", "s.arrow.interrupted", "--bootstrap", "20"],
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(
+        run.stdout.contains(
+            " of 300,000 samples: an interrupted sweep; `touchdown sweep --resume s.arrow` \
+             finishes it"
+        ),
+        "{run}"
+    );
+}

@@ -24,6 +24,7 @@ mod law_inputs;
 mod layers;
 mod leg_numbers;
 mod outcome_rules;
+mod output_sets;
 mod outputs;
 mod paired_sweeps;
 mod parameters;

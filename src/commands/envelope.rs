@@ -3,7 +3,8 @@
 
 use super::print::print_out;
 use crate::envelope::{DEFAULT_X, DEFAULT_Y, Settings};
-use anyhow::anyhow;
+use crate::output::OutputSet;
+use anyhow::{anyhow, bail};
 use std::path::{Path, PathBuf};
 
 /// Flags of `touchdown envelope`.
@@ -45,7 +46,7 @@ fn parse_bins(s: &str) -> Result<(usize, usize), String> {
     let (a, b) = s.split_once(',').ok_or_else(bad)?;
     let n = |t: &str| t.trim().parse::<usize>().ok().filter(|n| *n >= 1);
     let (nx, ny) = (n(a).ok_or_else(bad)?, n(b).ok_or_else(bad)?);
-    if nx * ny > 1_000_000 {
+    if nx.saturating_mul(ny) > MAX_CELLS {
         return Err(format!("{s:?}: at most 1,000,000 cells"));
     }
     Ok((nx, ny))
@@ -65,6 +66,79 @@ fn parse_bands(s: &str) -> Result<Bands, String> {
         .map(Bands)
 }
 
+/// The most cells an envelope holds, all its panels together.
+const MAX_CELLS: usize = 1_000_000;
+
+/// The largest picture, pixels (three bytes each): about 250 panels.
+const MAX_PIXELS: u64 = 50_000_000;
+
+/// Bytes held per sample read (x, y and slope, outcome, facing, a limit broken: 27) and
+/// per sample in its row of cells for the boundary (16).
+const SAMPLE_BYTES: u64 = 27 + 16;
+
+/// Bytes held per cell: its counts.
+const CELL_BYTES: u64 = std::mem::size_of::<crate::envelope::Cell>() as u64;
+
+/// Bytes held per row of cells: its samples' list and its boundary.
+const ROW_BYTES: u64 = 24 + std::mem::size_of::<crate::envelope::Row>() as u64;
+
+/// Refuses an envelope whose `panels` (with `args.bins` cells each) hold more cells than
+/// `MAX_CELLS` all together, draw a picture larger than `MAX_PIXELS`, or would hold, with
+/// the `samples` read, more memory than the machine has: before any of it is allocated,
+/// naming the flags and the size.
+fn fits(args: &EnvelopeArgs, panels: usize, samples: Option<u64>) -> anyhow::Result<()> {
+    let (nx, ny) = args.bins;
+    let asked = || {
+        let bands = args
+            .slope_bands
+            .as_ref()
+            .map_or("the default slope bands".to_string(), |b| {
+                format!("--slope-bands of {} bands", b.0.len() - 1)
+            });
+        let azimuth = if args.azimuth { " and --azimuth" } else { "" };
+        format!("--bins {nx},{ny} with {bands}{azimuth}: {panels} panels of {nx} x {ny} cells")
+    };
+    let cells = (nx as u64)
+        .saturating_mul(ny as u64)
+        .saturating_mul(panels as u64);
+    let facings = if args.azimuth { 2 } else { 1 };
+    let (width, height) = crate::plot::envelope_picture_size(panels / facings, facings);
+    let pixels = width.saturating_mul(height);
+    let bytes = cells
+        .saturating_mul(CELL_BYTES)
+        .saturating_add(
+            (ny as u64)
+                .saturating_mul(panels as u64)
+                .saturating_mul(ROW_BYTES),
+        )
+        .saturating_add(samples.unwrap_or(0).saturating_mul(SAMPLE_BYTES))
+        .saturating_add(pixels.saturating_mul(3));
+    if cells > MAX_CELLS as u64 {
+        bail!(
+            "{}, {cells} cells in all (about {} of memory): at most 1,000,000 cells in all \
+             panels together; ask for fewer bins or bands",
+            asked(),
+            crate::run::memory::shown_bytes(bytes)
+        );
+    }
+    if pixels > MAX_PIXELS {
+        bail!(
+            "{}: a picture of {width} x {height} pixels ({} of memory), more than the \
+             {MAX_PIXELS} pixels a picture may have; ask for fewer bands",
+            asked(),
+            crate::run::memory::shown_bytes(pixels.saturating_mul(3))
+        );
+    }
+    crate::run::memory::check_fits(bytes, || {
+        format!(
+            "{}, with the {} samples of {}, read and drawn,",
+            asked(),
+            samples.map_or("?".to_string(), |n| n.to_string()),
+            args.sweep.display()
+        )
+    })
+}
+
 /// Runs `touchdown envelope`.
 pub fn run(args: &EnvelopeArgs) -> anyhow::Result<()> {
     let settings = Settings {
@@ -74,7 +148,11 @@ pub fn run(args: &EnvelopeArgs) -> anyhow::Result<()> {
         slope_bands: args.slope_bands.as_ref().map(|b| b.0.clone()),
         azimuth: args.azimuth,
     };
-    let e = crate::envelope::envelope(&args.sweep, &settings)?;
+    let checked = crate::envelope::check(&args.sweep, &settings)?;
+    let samples = checked.samples_asked();
+    // The default bands are the data's (one to three): their panels are checked once it
+    // is read, the fewest meanwhile.
+    fits(args, checked.panels().unwrap_or(checked.facings()), samples)?;
     let dir = out_dir(&args.sweep, args.out_dir.as_deref())?;
     let stem = args
         .sweep
@@ -86,8 +164,12 @@ pub fn run(args: &EnvelopeArgs) -> anyhow::Result<()> {
         dir.join(format!("{stem}-envelope.png")),
         dir.join(format!("{stem}-envelope.csv")),
     );
-    crate::output::write_text(&csv, &crate::envelope::csv(&e))?;
+    // The picture and the table are one set, reserved before the samples are read.
+    let set = OutputSet::reserve(&[csv.clone(), png.clone()])?;
+    let e = checked.build(|panels| fits(args, panels, samples))?;
+    crate::output::write_with(&csv, |out| crate::envelope::write_csv(&e, out))?;
     crate::plot::envelope_chart(&png, &e)?;
+    set.commit()?;
     print_out(
         "the envelope",
         &format!(

@@ -5,6 +5,7 @@
 
 use super::flags::{Threads, parse_count, parse_kernel, parse_seed};
 use super::print::print_out;
+use crate::output::OutputSet;
 use crate::output::format::Format;
 use crate::run::KernelChoice;
 use crate::run::site::{Made, SiteSettings};
@@ -114,6 +115,18 @@ fn parse_axis(s: &str) -> Result<[f64; 3], String> {
     Ok([v[0], v[1], v[2]])
 }
 
+/// The map's files in `--out-dir`: the facets' table, the summary, the map picture and
+/// the 3D page.
+fn map_files(args: &SiteArgs) -> [PathBuf; 4] {
+    let dir = &args.out_dir;
+    [
+        dir.join(format!("facets.{}", args.format.key())),
+        dir.join("site.md"),
+        dir.join("map.png"),
+        dir.join("site.html"),
+    ]
+}
+
 /// Runs `touchdown site`.
 pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
     let window = Window {
@@ -140,6 +153,12 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         quiet: args.quiet,
         kernel: args.kernel,
     };
+    let files = map_files(args);
+    // The map's files are refused before the facets and the sweep if one may not be
+    // written (an input of this command under its name, say), and written as one set.
+    if args.shard.is_none() {
+        crate::output::set::check(&files)?;
+    }
     let run = match crate::run::site::run(&settings)? {
         Made::Map(run) => run,
         Made::Shard { shard, file, log } => {
@@ -154,13 +173,8 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
             );
         }
     };
-    let dir = &args.out_dir;
-    let ext = match args.format {
-        Format::Arrow => "arrow",
-        Format::Parquet => "parquet",
-    };
-    let table = dir.join(format!("facets.{ext}"));
-    let md = dir.join("site.md");
+    let set = OutputSet::reserve(&files)?;
+    let [table, md, png, html] = files;
     let sweep_name = run
         .sweep_file
         .file_name()
@@ -196,10 +210,9 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         },
     );
     crate::output::write_text(&md, &text)?;
-    let png = dir.join("map.png");
-    let html = dir.join("site.html");
     crate::plot::site::site_map(&run.site, &png)?;
     crate::view::site::site_page(&run.site, &html)?;
+    set.commit()?;
     print_out(
         "the map's summary",
         &format!(

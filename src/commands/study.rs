@@ -5,10 +5,11 @@
 
 use super::flags::{Threads, parse_count, parse_kernel, parse_seed};
 use super::print::print_out;
+use crate::output::OutputSet;
 use crate::output::format::Format;
 use crate::run::KernelChoice;
 use crate::run::study::StudySettings;
-use crate::study::{About, Row, Vary, markdown, write_table};
+use crate::study::{About, Row, Vary, markdown, table_files, write_table};
 use crate::sweep::Shard;
 use std::path::PathBuf;
 
@@ -99,14 +100,14 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         samples,
         base_text: &study.base_text,
     };
-    let dir = &args.out_dir;
-    let table = dir.join("study.arrow");
-    let md = dir.join("study.md");
-    let png = dir.join("study.png");
+    let files = table_files(&args.out_dir);
+    let set = OutputSet::reserve(&files)?;
+    let [table, md, png] = files;
     write_table(&table, &rows, &about)?;
     let text = markdown(&rows, &about);
     crate::output::write_text(&md, &text)?;
     crate::plot::study_chart(&png, &rows, &about)?;
+    set.commit()?;
     print_out(
         "the study's table",
         &format!(

@@ -17,7 +17,7 @@ use anyhow::{anyhow, bail};
 use std::path::Path;
 
 pub use plane::{Axis, Cell, Envelope, Facing, Panel, Row};
-pub use table::{csv, markdown, panel_title};
+pub use table::{markdown, panel_title, write_csv};
 
 /// The default x column: the speed along the surface at the first contact.
 pub const DEFAULT_X: &str = "touchdown_tangential_speed_m_s";
@@ -40,8 +40,22 @@ pub struct Settings {
     pub azimuth: bool,
 }
 
-/// The envelope of the sweep file at `path`.
-pub fn envelope(path: &Path, settings: &Settings) -> anyhow::Result<Envelope> {
+/// An envelope asked for, checked against its sweep file before its samples are read.
+pub struct Checked {
+    path: std::path::PathBuf,
+    settings: Settings,
+    /// The units of x and y.
+    units: (String, String),
+    /// The legs' azimuths and half a leg's sector, with `--azimuth`.
+    legs: Option<read::Legs>,
+    /// The file's schema metadata.
+    meta: arrow_schema::Metadata,
+}
+
+/// Checks `settings` against the sweep file at `path`: the bins and bands, the file a
+/// sweep with numeric x and y columns, and with `--azimuth` a scenario whose legs read.
+/// Every refusal but those of the data itself, made before the samples are read.
+pub fn check(path: &Path, settings: &Settings) -> anyhow::Result<Checked> {
     let (nx, ny) = settings.bins;
     if nx == 0 || ny == 0 {
         bail!("--bins {nx},{ny}: at least one bin along each axis");
@@ -50,80 +64,120 @@ pub fn envelope(path: &Path, settings: &Settings) -> anyhow::Result<Envelope> {
         check_bands(bands)?;
     }
     let (schema, _) = crate::output::read::open(path, crate::output::read::format_of(path)?)?;
-    let (x_unit, y_unit) =
-        read::check_columns(path, &schema, (settings.x.as_str(), settings.y.as_str()))?;
+    let units = read::check_columns(path, &schema, (settings.x.as_str(), settings.y.as_str()))?;
     let legs = if settings.azimuth {
         Some(legs_of(path, schema.metadata())?)
     } else {
         None
     };
-    let s = read::samples(path, (&settings.x, &settings.y), legs.as_ref())?;
-    let bands = match &settings.slope_bands {
-        Some(b) => b.clone(),
-        None => default_bands(&s.slope_deg),
-    };
-    let facings: &[Facing] = if settings.azimuth {
-        &[Facing::LegDownhill, Facing::SideDownhill]
-    } else {
-        &[Facing::All]
-    };
-    let x = Axis::over(&settings.x, x_unit, &s.x, nx);
-    let y = Axis::over(&settings.y, y_unit, &s.y, ny);
-    let mut panels: Vec<Panel> = bands
-        .windows(2)
-        .flat_map(|w| {
-            facings.iter().map(|f| Panel {
-                slope_deg: (w[0], w[1]),
-                facing: *f,
-                cells: vec![Cell::default(); nx * ny],
-                rows: Vec::new(),
-            })
-        })
-        .collect();
-    // Each panel's rows: (x, stable) of their samples, for the boundary.
-    let mut rows: Vec<Vec<Vec<(f64, bool)>>> = vec![vec![Vec::new(); ny]; panels.len()];
-    let mut outside_bands = 0;
-    for k in 0..s.x.len() {
-        let Some(band) = band_of(&bands, s.slope_deg[k]) else {
-            outside_bands += 1;
-            continue;
-        };
-        let p = band * facings.len() + facings.iter().position(|f| *f == s.facing[k]).unwrap_or(0);
-        let (i, j) = (x.bin_of(s.x[k]), y.bin_of(s.y[k]));
-        let cell = &mut panels[p].cells[j * nx + i];
-        cell.counts[usize::from(s.outcome[k])] += 1;
-        cell.limits_broken += u64::from(s.broke[k]);
-        rows[p][j].push((
-            s.x[k],
-            usize::from(s.outcome[k]) == Outcome::Stable as usize,
-        ));
+    Ok(Checked {
+        path: path.to_path_buf(),
+        settings: settings.clone(),
+        units,
+        legs,
+        meta: schema.metadata().clone(),
+    })
+}
+
+impl Checked {
+    /// The facings of each slope band: two with `--azimuth`, else one.
+    #[must_use]
+    pub fn facings(&self) -> usize {
+        if self.settings.azimuth { 2 } else { 1 }
     }
-    for (panel, rows) in panels.iter_mut().zip(rows) {
-        panel.rows = rows
-            .into_iter()
-            .map(|mut r| Row {
-                samples: r.len() as u64,
-                stable: r.iter().filter(|v| v.1).count() as u64,
-                boundary: allowable_slope(&mut r),
+
+    /// The panels, where `--slope-bands` gives the bands (the default bands are the
+    /// data's, one to three, known once it is read).
+    #[must_use]
+    pub fn panels(&self) -> Option<usize> {
+        let bands = self.settings.slope_bands.as_ref()?;
+        Some((bands.len() - 1) * self.facings())
+    }
+
+    /// The samples the sweep file asked for: the most rows it holds.
+    #[must_use]
+    pub fn samples_asked(&self) -> Option<u64> {
+        crate::output::sweep::samples_asked(|k| self.meta.get(k))
+    }
+
+    /// The envelope: the samples read, the slope bands made and the cells counted; `fits`
+    /// is asked whether the panels (their count given) may be made before their cells are.
+    pub fn build(self, fits: impl FnOnce(usize) -> anyhow::Result<()>) -> anyhow::Result<Envelope> {
+        let asked = self.samples_asked();
+        let (path, settings) = (self.path.as_path(), &self.settings);
+        let (nx, ny) = settings.bins;
+        let s = read::samples(path, (&settings.x, &settings.y), self.legs.as_ref())?;
+        let bands = match &settings.slope_bands {
+            Some(b) => b.clone(),
+            None => default_bands(&s.slope_deg),
+        };
+        let facings: &[Facing] = if settings.azimuth {
+            &[Facing::LegDownhill, Facing::SideDownhill]
+        } else {
+            &[Facing::All]
+        };
+        fits((bands.len() - 1) * facings.len())?;
+        let (x_unit, y_unit) = self.units;
+        let x = Axis::over(&settings.x, x_unit, &s.x, nx);
+        let y = Axis::over(&settings.y, y_unit, &s.y, ny);
+        let mut panels: Vec<Panel> = bands
+            .windows(2)
+            .flat_map(|w| {
+                facings.iter().map(|f| Panel {
+                    slope_deg: (w[0], w[1]),
+                    facing: *f,
+                    cells: vec![Cell::default(); nx * ny],
+                    rows: Vec::new(),
+                })
             })
             .collect();
+        // Each panel's rows: (x, stable) of their samples, for the boundary.
+        let mut rows: Vec<Vec<Vec<(f64, bool)>>> = vec![vec![Vec::new(); ny]; panels.len()];
+        let mut outside_bands = 0;
+        for k in 0..s.x.len() {
+            let Some(band) = band_of(&bands, s.slope_deg[k]) else {
+                outside_bands += 1;
+                continue;
+            };
+            let p =
+                band * facings.len() + facings.iter().position(|f| *f == s.facing[k]).unwrap_or(0);
+            let (i, j) = (x.bin_of(s.x[k]), y.bin_of(s.y[k]));
+            let cell = &mut panels[p].cells[j * nx + i];
+            cell.counts[usize::from(s.outcome[k])] += 1;
+            cell.limits_broken += u64::from(s.broke[k]);
+            rows[p][j].push((
+                s.x[k],
+                usize::from(s.outcome[k]) == Outcome::Stable as usize,
+            ));
+        }
+        for (panel, rows) in panels.iter_mut().zip(rows) {
+            panel.rows = rows
+                .into_iter()
+                .map(|mut r| Row {
+                    samples: r.len() as u64,
+                    stable: r.iter().filter(|v| v.1).count() as u64,
+                    boundary: allowable_slope(&mut r),
+                })
+                .collect();
+        }
+        Ok(Envelope {
+            interrupted: crate::output::sweep::interrupted_note(path, s.rows, asked),
+            path: self.path,
+            x,
+            y,
+            panels,
+            rows: s.rows,
+            never_touched: s.never_touched,
+            no_value: s.no_value,
+            outside_bands,
+            limits: s.limits,
+            seed: self
+                .meta
+                .get("touchdown.seed")
+                .cloned()
+                .unwrap_or_else(|| "?".to_string()),
+        })
     }
-    Ok(Envelope {
-        path: path.to_path_buf(),
-        x,
-        y,
-        panels,
-        rows: s.rows,
-        never_touched: s.never_touched,
-        no_value: s.no_value,
-        outside_bands,
-        limits: s.limits,
-        seed: schema
-            .metadata()
-            .get("touchdown.seed")
-            .cloned()
-            .unwrap_or_else(|| "?".to_string()),
-    })
 }
 
 /// Refuses slope bands that are not at least two increasing edges in [0, 90] deg.

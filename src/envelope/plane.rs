@@ -212,6 +212,9 @@ pub struct Envelope {
     pub limits: bool,
     /// The sweep's seed, from its metadata.
     pub seed: String,
+    /// What to say of the file where it holds fewer samples than it asked for: an
+    /// interrupted sweep's (`output::sweep::interrupted_note`).
+    pub interrupted: Option<String>,
 }
 
 impl Envelope {

@@ -54,6 +54,9 @@ fn boundary_cells(b: Allowable, x: &Axis) -> (String, String) {
 pub fn markdown(e: &Envelope) -> String {
     let mut t = String::new();
     let _ = writeln!(t, "# touchdown envelope: {}\n", e.path.display());
+    if let Some(note) = &e.interrupted {
+        let _ = writeln!(t, "**{note}.**\n");
+    }
     let _ = write!(
         t,
         "{} samples, seed {}: {} in the panels",
@@ -153,21 +156,23 @@ fn boundary_fields(r: &Row) -> [String; 3] {
     }
 }
 
-/// The CSV table of an envelope: one row per cell (panel by panel, y bin by y bin, x bin
+/// Writes the CSV table of an envelope to `out`, row by row (a million cells make about
+/// 100 MB of text, never held): one row per cell (panel by panel, y bin by y bin, x bin
 /// by x bin), with its slope band and facing, its x and y ranges, its samples per outcome,
 /// the stable share with its 95 % Wilson interval, the samples that broke a limit (empty
 /// without a `limits_broken` column), and its row's samples and boundary.
-#[must_use]
-pub fn csv(e: &Envelope) -> String {
-    let mut t =
-        String::from("panel,slope_min_deg,slope_max_deg,facing,x_min,x_max,y_min,y_max,samples,");
+pub fn write_csv(e: &Envelope, out: &mut impl std::io::Write) -> std::io::Result<()> {
+    write!(
+        out,
+        "panel,slope_min_deg,slope_max_deg,facing,x_min,x_max,y_min,y_max,samples,"
+    )?;
     for o in Outcome::ALL {
-        let _ = write!(t, "{},", o.name());
+        write!(out, "{},", o.name())?;
     }
-    t.push_str(
-        "stable_share,stable_share_low,stable_share_high,limits_broken,\
+    out.write_all(
+        b"stable_share,stable_share_low,stable_share_high,limits_broken,\
          row_samples,row_boundary_x,row_boundary_low_x,row_boundary_high_x\n",
-    );
+    )?;
     let (nx, ny) = (e.x.bins, e.y.bins);
     for (k, p) in e.panels.iter().enumerate() {
         for j in 0..ny {
@@ -176,8 +181,8 @@ pub fn csv(e: &Envelope) -> String {
             for i in 0..nx {
                 let c = p.cell(i, j, nx);
                 let n = c.samples();
-                let _ = write!(
-                    t,
+                write!(
+                    out,
                     "{k},{},{},{},{},{},{},{},{n},",
                     p.slope_deg.0,
                     p.slope_deg.1,
@@ -186,22 +191,22 @@ pub fn csv(e: &Envelope) -> String {
                     e.x.edge(i + 1),
                     e.y.edge(j),
                     e.y.edge(j + 1)
-                );
+                )?;
                 for count in c.counts {
-                    let _ = write!(t, "{count},");
+                    write!(out, "{count},")?;
                 }
                 if n == 0 {
-                    t.push_str(",,,");
+                    out.write_all(b",,,")?;
                 } else {
                     let (l, h) = wilson_interval(c.stable(), n);
-                    let _ = write!(t, "{},{l},{h},", c.stable() as f64 / n as f64);
+                    write!(out, "{},{l},{h},", c.stable() as f64 / n as f64)?;
                 }
                 if e.limits {
-                    let _ = write!(t, "{}", c.limits_broken);
+                    write!(out, "{}", c.limits_broken)?;
                 }
-                let _ = writeln!(t, ",{},{b},{lo},{hi}", row.samples);
+                writeln!(out, ",{},{b},{lo},{hi}", row.samples)?;
             }
         }
     }
-    t
+    Ok(())
 }

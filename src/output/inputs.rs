@@ -1,7 +1,9 @@
 //! No output is an input of the same command: a command declares the files it reads
 //! (`declare`), and every output it opens afterwards (`AtomicFile::create`,
-//! `check_output_path`, standard output) is refused when it is one of them, whether named
-//! the same way, through a symbolic link or as another hard link of the same file.
+//! `check_output_path`, `OutputSet::reserve`, standard output) is refused when it is one of
+//! them, whether named the same way, through a symbolic link or as another hard link of
+//! the same file; and so is an output whose temporary file (or an interrupted sweep's file)
+//! would take an input's name.
 
 use anyhow::bail;
 use std::os::unix::fs::MetadataExt;
@@ -63,6 +65,27 @@ pub fn refuse_input_as_output(out: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Refuses the output `out` when `beside`, a file it makes beside itself (`what`: its
+/// unfinished file, an interrupted sweep's rows), is (or links to) a file the command reads:
+/// that file would be emptied, replaced or removed.
+pub fn refuse_input_beside(out: &Path, beside: &Path, what: &str) -> anyhow::Result<()> {
+    if let Ok(m) = std::fs::metadata(beside)
+        && let Some(input) = input_of(&m)
+    {
+        bail!(
+            "cannot write {}: {}, the name of {what}, is {}; choose another output path",
+            out.display(),
+            beside.display(),
+            if same_name(&input, beside) {
+                "an input of this command".to_string()
+            } else {
+                format!("the input {} under another name (a link)", input.display())
+            }
+        );
+    }
+    Ok(())
+}
+
 /// Refuses standard output when it is redirected into a file the command reads
 /// (`touchdown report s.arrow >> s.arrow`).
 pub fn refuse_stdout_as_output() -> anyhow::Result<()> {
@@ -82,9 +105,26 @@ pub fn refuse_stdout_as_output() -> anyhow::Result<()> {
     Ok(())
 }
 
-/// How `out` is the input `input`: the same path, or the same file under another name.
+/// Whether paths `a` and `b` name the same entry of the same folder, however written
+/// (`m/x` and `/abs/m/x`; a link at the last step is not followed).
+fn same_name(a: &Path, b: &Path) -> bool {
+    let entry = |p: &Path| {
+        let folder = match p.parent() {
+            Some(f) if !f.as_os_str().is_empty() => f,
+            _ => Path::new("."),
+        };
+        Some((
+            std::fs::canonicalize(folder).ok()?,
+            p.file_name()?.to_owned(),
+        ))
+    };
+    a == b || entry(a).is_some_and(|e| entry(b) == Some(e))
+}
+
+/// How `out` is the input `input`: the same path (however written), or the same file
+/// under another name.
 fn same_as(out: &Path, input: &Path) -> String {
-    if out == input {
+    if same_name(out, input) {
         "it is an input of this command".to_string()
     } else {
         format!(

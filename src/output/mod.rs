@@ -8,7 +8,9 @@ mod lock;
 pub mod merge;
 pub mod read;
 pub mod resume;
+pub mod set;
 pub mod sweep;
+mod target;
 pub mod trace;
 
 use arrow_schema::{DataType, Field};
@@ -17,6 +19,9 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 pub use lock::FolderLock;
+pub use set::OutputSet;
+use target::{Target, target_of, unfinished};
+pub use target::{check_output_path, remove_unfinished};
 
 /// The engine and version that write a file, as stored in its schema metadata.
 pub const ENGINE: &str = concat!("touchdown ", env!("CARGO_PKG_VERSION"));
@@ -29,6 +34,16 @@ pub fn interrupted_path(out: &Path) -> PathBuf {
     out.with_file_name(name)
 }
 
+/// Refuses a sweep's output `out` as `check_output_path` does, and where the file an
+/// interrupted run leaves beside it (`interrupted_path`) would take an input's name.
+pub fn check_sweep_output_path(out: &Path) -> anyhow::Result<()> {
+    check_output_path(out)?;
+    if out.as_os_str() == "-" {
+        return Ok(());
+    }
+    inputs::refuse_input_beside(out, &interrupted_path(out), "an interrupted sweep's file")
+}
+
 /// A field with its unit (`"1"` for dimensionless) and a description in its metadata.
 #[must_use]
 pub fn field(name: &str, data_type: DataType, unit: &str, description: &str) -> Field {
@@ -37,20 +52,6 @@ pub fn field(name: &str, data_type: DataType, unit: &str, description: &str) -> 
             .into_iter()
             .collect::<arrow_schema::Metadata>(),
     )
-}
-
-/// Where an output goes.
-#[derive(Debug, Clone)]
-enum Target {
-    /// A regular file (or none yet): written as `PATH.partial` beside it and renamed onto
-    /// it when complete. A symbolic link is followed: the file it names is replaced, the
-    /// link stays.
-    Regular { path: PathBuf, partial: PathBuf },
-    /// Something that is not a regular file (a device such as `/dev/null`, a FIFO, or a
-    /// symbolic link to one): written into directly, never replaced or removed.
-    Direct { path: PathBuf },
-    /// Standard output (`-`).
-    Stdout,
 }
 
 /// The stream an output is written to.
@@ -89,12 +90,16 @@ pub type Out = BufWriter<Sink>;
 ///
 /// One run writes a regular file at a time: the temporary file stays locked until it is
 /// renamed or removed, and a second run to the same path is refused, naming the first.
+/// A file of an `OutputSet` is written into the temporary file the set reserved, and
+/// `commit` leaves it there for the set to move into place with the others.
 pub struct AtomicFile {
     target: Target,
     committed: bool,
     /// The lock on the temporary file of a regular output, released after it is renamed
     /// or removed (never before: the name could then be another run's file).
     lock: Option<File>,
+    /// Whether it is a file of an `OutputSet`, which renames or removes it.
+    in_set: bool,
 }
 
 impl AtomicFile {
@@ -102,6 +107,15 @@ impl AtomicFile {
     /// path when its folder does not exist or it cannot be written.
     pub fn create(path: &Path) -> anyhow::Result<(AtomicFile, Out)> {
         check_output_path(path)?;
+        if let Some((path, partial, file)) = set::claim(path)? {
+            let handle = AtomicFile {
+                target: Target::Regular { path, partial },
+                committed: false,
+                lock: None,
+                in_set: true,
+            };
+            return Ok((handle, BufWriter::with_capacity(1 << 20, Sink::File(file))));
+        }
         let target = target_of(path)?;
         let mut lock = None;
         let sink = match &target {
@@ -125,6 +139,7 @@ impl AtomicFile {
             target,
             committed: false,
             lock,
+            in_set: false,
         };
         Ok((handle, BufWriter::with_capacity(1 << 20, sink)))
     }
@@ -200,9 +215,13 @@ impl AtomicFile {
             (sink, rename_to, &self.target)
         {
             file.sync_all().map_err(context)?;
-            std::fs::rename(partial, path).map_err(|e| {
-                anyhow::anyhow!("cannot move the finished file onto {}: {e}", path.display())
-            })?;
+            if self.in_set {
+                set::written(partial);
+            } else {
+                std::fs::rename(partial, path).map_err(|e| {
+                    anyhow::anyhow!("cannot move the finished file onto {}: {e}", path.display())
+                })?;
+            }
         }
         self.committed = true;
         Ok(())
@@ -211,6 +230,10 @@ impl AtomicFile {
 
 impl Drop for AtomicFile {
     fn drop(&mut self) {
+        // A file of a set is the set's to remove.
+        if self.in_set {
+            return;
+        }
         if let Target::Regular { partial, .. } = &self.target {
             if !self.committed {
                 let _ = std::fs::remove_file(partial);
@@ -222,39 +245,19 @@ impl Drop for AtomicFile {
     }
 }
 
-/// The temporary files of the outputs being written, to remove when a signal ends the
-/// process (`remove_unfinished`).
-static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
-
-/// Adds (`true`) or takes away a temporary file from those being written.
-fn unfinished(partial: &Path, add: bool) {
-    let mut files = UNFINISHED
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    if add {
-        files.push(partial.to_path_buf());
-    } else if let Some(i) = files.iter().position(|f| f == partial) {
-        files.swap_remove(i);
-    }
-}
-
-/// Removes the temporary files of every output being written (a signal ends the process):
-/// nothing unfinished is left behind. Returns how many there were.
-pub fn remove_unfinished() -> usize {
-    let files = UNFINISHED
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    for f in files.iter() {
-        let _ = std::fs::remove_file(f);
-    }
-    files.len()
-}
-
 /// Writes `text` to `path`, complete or not at all (a temporary file renamed once whole).
 pub fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
-    use std::io::Write;
+    write_with(path, |out| out.write_all(text.as_bytes()))
+}
+
+/// Writes to `path` what `write` writes as it goes (a table too large to hold as one
+/// string), complete or not at all.
+pub fn write_with(
+    path: &Path,
+    write: impl FnOnce(&mut Out) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
     let (file, mut out) = AtomicFile::create(path)?;
-    out.write_all(text.as_bytes())
+    write(&mut out)
         .and_then(|()| out.flush())
         .map_err(|e| cannot_write(path, e))?;
     file.commit(out)
@@ -279,80 +282,6 @@ pub fn cannot_write(path: &Path, e: impl Into<anyhow::Error>) -> anyhow::Error {
         None => e,
     }
     .context(context)
-}
-
-/// Where output `path` goes: standard output, a device or FIFO (followed through symbolic
-/// links) written into, or a regular file (the one a symbolic link names) renamed into place.
-fn target_of(path: &Path) -> anyhow::Result<Target> {
-    if path.as_os_str() == "-" {
-        return Ok(Target::Stdout);
-    }
-    if let Ok(m) = std::fs::metadata(path)
-        && !m.is_file()
-    {
-        return Ok(Target::Direct {
-            path: path.to_path_buf(),
-        });
-    }
-    // A symbolic link (to a regular file, or to nothing yet): replace what it names.
-    let mut real = path.to_path_buf();
-    for _ in 0..40 {
-        match std::fs::symlink_metadata(&real) {
-            Ok(m) if m.file_type().is_symlink() => {
-                let to = std::fs::read_link(&real)
-                    .map_err(|e| anyhow::anyhow!("cannot follow {}: {e}", real.display()))?;
-                real = match real.parent() {
-                    Some(dir) => dir.join(to),
-                    None => to,
-                };
-            }
-            _ => break,
-        }
-    }
-    let mut name = real.file_name().unwrap_or_default().to_os_string();
-    name.push(".partial");
-    let partial = real.with_file_name(name);
-    Ok(Target::Regular {
-        path: real,
-        partial,
-    })
-}
-
-/// Refuses an output path whose folder is missing, that names a folder or that is one of
-/// the command's inputs (`inputs::declare`), before any work. `-` (standard output) and
-/// existing files of any kind other than folders are accepted.
-pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
-    if path.as_os_str() == "-" {
-        return inputs::refuse_stdout_as_output();
-    }
-    if path.as_os_str().is_empty() || path.file_name().is_none() {
-        anyhow::bail!("output path {:?} names no file", path.display().to_string());
-    }
-    if path.is_dir() {
-        anyhow::bail!("output path {} is a folder, not a file", path.display());
-    }
-    if std::fs::metadata(path).is_ok() {
-        return inputs::refuse_input_as_output(path);
-    }
-    let parent = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if parent.exists() && !parent.is_dir() {
-        anyhow::bail!(
-            "cannot write output file {}: {} is a file, not a folder",
-            path.display(),
-            parent.display()
-        );
-    }
-    if !parent.is_dir() {
-        anyhow::bail!(
-            "cannot write output file {}: folder {} does not exist",
-            path.display(),
-            parent.display()
-        );
-    }
-    Ok(())
 }
 
 /// An Arrow IPC writer: the IPC file format (Feather v2), or the IPC stream format for

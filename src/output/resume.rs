@@ -4,7 +4,7 @@
 //! the sweep.
 
 use super::ENGINE;
-use super::format::{BATCH_ROWS, Format};
+use super::format::Format;
 use super::interrupted_path;
 use super::read::{format_of, open};
 use super::sweep::{Rebatcher, SHARD_KEYS, SweepWriter};
@@ -113,17 +113,18 @@ impl Interrupted {
         })
     }
 
-    /// The rows that a resumed sweep takes over: the whole batches (the rows after them are
-    /// computed again, so that the resumed file is cut into the same batches as one that
-    /// never stopped).
+    /// The rows that a resumed sweep takes over: every row of the file (those after its
+    /// whole batches head the next batch, `SweepWriter::hold`, so that the resumed file is
+    /// cut into the same batches as one that never stopped).
     #[must_use]
     pub fn kept_rows(&self) -> u64 {
-        self.rows / BATCH_ROWS as u64 * BATCH_ROWS as u64
+        self.rows
     }
 
     /// Copies the first `kept_rows()` rows to `writer`, checking that they are samples
-    /// `first..`, in order. Returns the outcome counts (by name) and the lander-steps of
-    /// the copied rows, for the closing summary.
+    /// `first..`, in order: the whole batches written, the rows after them held to head the
+    /// next. Returns the outcome counts (by name) and the lander-steps of the copied rows,
+    /// for the closing summary.
     pub fn copy_kept_rows(
         &self,
         first: u64,
@@ -167,7 +168,7 @@ impl Interrupted {
             steps += step_counts.values().iter().sum::<u64>();
             rebatcher.push(b, writer)?;
         }
-        rebatcher.finish(writer)?;
+        rebatcher.hand_over(writer)?;
         Ok((counts, steps))
     }
 }

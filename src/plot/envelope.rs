@@ -36,6 +36,23 @@ const LIMIT_TEXT: RGBColor = RGBColor(110, 0, 130);
 /// The boundary's colour.
 const BOUNDARY: RGBColor = RGBColor(0, 0, 0);
 
+/// The columns and rows of panels of a picture of `bands` slope bands of `facings` each.
+fn layout(bands: usize, facings: usize) -> (usize, usize) {
+    let cols = bands.clamp(1, COLUMNS);
+    (cols, bands.div_ceil(cols) * facings)
+}
+
+/// The size in pixels, width and height, of the picture of an envelope of `bands` slope
+/// bands of `facings` panels each (for the memory it takes, before it is drawn).
+#[must_use]
+pub(crate) fn envelope_picture_size(bands: usize, facings: usize) -> (u64, u64) {
+    let (cols, rows) = layout(bands, facings);
+    // Wide enough for the legend's lines.
+    let width = (u64::from(PANEL.0) * cols as u64 + u64::from(BAR)).max(u64::from(MIN_WIDTH));
+    let height = u64::from(TITLE) + u64::from(PANEL.1) * rows as u64 + u64::from(LEGEND);
+    (width, height)
+}
+
 /// Writes the picture of `e` to `out` (PNG).
 pub(crate) fn envelope_chart(out: &Path, e: &Envelope) -> anyhow::Result<()> {
     let facings = if e.panels.iter().any(|p| p.facing != Facing::All) {
@@ -44,11 +61,12 @@ pub(crate) fn envelope_chart(out: &Path, e: &Envelope) -> anyhow::Result<()> {
         1
     };
     let bands = e.panels.len() / facings;
-    let cols = bands.clamp(1, COLUMNS);
-    let rows = bands.div_ceil(cols) * facings;
-    // Wide enough for the legend's lines.
-    let width = (PANEL.0 * cols as u32 + BAR).max(MIN_WIDTH);
-    let height = TITLE + PANEL.1 * rows as u32 + LEGEND;
+    let (cols, rows) = layout(bands, facings);
+    let (width, height) = envelope_picture_size(bands, facings);
+    let size = |n: u64| {
+        u32::try_from(n).map_err(|_| anyhow::anyhow!("the picture would be {n} pixels across"))
+    };
+    let (width, height) = (size(width)?, size(height)?);
     save_png(out, (width, height), |root| {
         let (title, rest) = root.split_vertically(TITLE);
         let (body, foot) = rest.split_vertically(PANEL.1 * rows as u32);
@@ -56,11 +74,14 @@ pub(crate) fn envelope_chart(out: &Path, e: &Envelope) -> anyhow::Result<()> {
         title
             .titled(
                 &format!(
-                    "Touchdown envelope: {}, {} of {} samples, seed {}",
+                    "Touchdown envelope: {}, {} of {} samples, seed {}{}",
                     e.path.display(),
                     e.samples(),
                     e.rows,
-                    e.seed
+                    e.seed,
+                    e.interrupted
+                        .as_ref()
+                        .map_or(String::new(), |_| " (an interrupted sweep)".to_string())
                 ),
                 (FONT, 20),
             )

@@ -12,16 +12,20 @@ mod study;
 mod sweep;
 mod trace;
 
+use crate::output::OutputSet;
 use crate::output::read::{format_of, open};
 use anyhow::{anyhow, bail};
 use std::path::{Path, PathBuf};
 
-pub(crate) use envelope::envelope_chart;
+pub(crate) use envelope::{envelope_chart, envelope_picture_size};
 pub use sensitivity::sensitivity_chart;
 pub(crate) use study::study_chart;
 
+/// What draws the pictures of one kind of file, named by the function given.
+type Draw = fn(&Path, &dyn Fn(&str) -> PathBuf) -> anyhow::Result<Vec<PathBuf>>;
+
 /// Writes the pictures of the sweep or trace file at `path` into `out_dir` (default: the
-/// file's folder), named after the file; returns their paths.
+/// file's folder), named after the file, as one set (`OutputSet`); returns their paths.
 pub fn plot(path: &Path, out_dir: Option<&Path>) -> anyhow::Result<Vec<PathBuf>> {
     let stem = path
         .file_stem()
@@ -51,8 +55,14 @@ pub fn plot(path: &Path, out_dir: Option<&Path>) -> anyhow::Result<Vec<PathBuf>>
     }
     std::fs::create_dir_all(&dir)
         .map_err(|e| anyhow!("cannot make output folder {}: {e}", dir.display()))?;
-    match kind {
-        Some("sweep") => sweep::plot(path, &name),
-        _ => trace::plot(path, &name),
-    }
+    // The pictures of one file are one set: reserved before they are drawn, moved into
+    // place together once all are.
+    let (pictures, draw): (&[&str], Draw) = match kind {
+        Some("sweep") => (&sweep::PICTURES, sweep::plot),
+        _ => (&trace::PICTURES, trace::plot),
+    };
+    let set = OutputSet::reserve(&pictures.iter().map(|p| name(p)).collect::<Vec<_>>())?;
+    let written = draw(path, &name)?;
+    set.commit()?;
+    Ok(written)
 }

@@ -72,8 +72,13 @@ impl Sweep {
             tips_m,
             dampers,
             about: format!(
-                "{} samples, seed {}",
-                t.rows,
+                "{}, seed {}",
+                // A file short of its samples: an interrupted sweep's.
+                match crate::output::sweep::samples_asked(|k| t.meta.get(k)) {
+                    Some(asked) if (t.rows as u64) < asked =>
+                        format!("{} of {asked} samples (an interrupted sweep)", t.rows),
+                    _ => format!("{} samples", t.rows),
+                },
                 t.meta.get("touchdown.seed").map_or("?", String::as_str)
             ),
         })
@@ -93,23 +98,24 @@ impl Sweep {
     }
 }
 
+/// The pictures of a sweep, by the end of their names.
+pub(super) const PICTURES: [&str; 4] = ["stability-map", "tipped-by-slope", "loads", "exceedance"];
+
 /// Writes the sweep's pictures, named by `name`; returns their paths.
 pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Result<Vec<PathBuf>> {
     let s = Sweep::read(path)?;
     let limit = s.limit_curve();
     let mut written = Vec::new();
+    let [map, tipped, loads, exceedance] = PICTURES.map(name);
 
-    let map = name("stability-map");
     save_png(&map, (1000, 680), |root| stability_map(root, &s, &limit))?;
     written.push(map);
 
-    let tipped = name("tipped-by-slope");
     save_png(&tipped, (1000, 620), |root| {
         tipped_by_slope(root, &s, &limit)
     })?;
     written.push(tipped);
 
-    let loads = name("loads");
     save_png(&loads, (1200, 520), |root| {
         let panels = root.split_evenly((1, 2));
         histogram(
@@ -129,7 +135,6 @@ pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
 
     let source = crate::output::sweep::SweepSource::Path(path.to_path_buf());
     let quantities = crate::exceedance::gather(&source, s.dampers)?;
-    let exceedance = name("exceedance");
     let rows = quantities.len().div_ceil(2) as u32;
     save_png(&exceedance, (1200, 40 + 460 * rows), |root| {
         super::exceedance::exceedance(root, &quantities, &s.about)

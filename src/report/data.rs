@@ -30,6 +30,9 @@ pub(super) struct Provenance {
     pub(super) engine: Option<String>,
     /// Whether the scenario stored in it has its dampers on (`None`: it does not read).
     pub(super) dampers: Option<bool>,
+    /// The samples it asked for, where it holds fewer (an interrupted sweep's file), and
+    /// what to say of it (`output::sweep::interrupted_note`).
+    pub(super) interrupted: Option<(u64, String)>,
 }
 
 /// The allowable slope of one sector of downhill azimuth relative to the lander.
@@ -140,6 +143,7 @@ impl Report {
                 seed: meta.get("touchdown.seed").cloned(),
                 engine: meta.get("touchdown.engine").cloned(),
                 dampers,
+                interrupted: interrupted(source, meta, total),
             },
             outcomes: Outcome::listed(controlled)
                 .map(|o| (o, Share::of(counts[o as usize], total)))
@@ -154,6 +158,21 @@ impl Report {
             release: release.section(),
         })
     }
+}
+
+/// The samples the sweep file `source` asked for and what to say of it, where it holds
+/// fewer than that (`total`): an interrupted sweep's rows. A sweep held in memory is whole.
+fn interrupted(
+    source: &SweepSource,
+    meta: &arrow_schema::Metadata,
+    total: u64,
+) -> Option<(u64, String)> {
+    let SweepSource::Path(path) = source else {
+        return None;
+    };
+    let asked = crate::output::sweep::samples_asked(|k| meta.get(k));
+    let note = crate::output::sweep::interrupted_note(path, total, asked)?;
+    Some((asked?, note))
 }
 
 /// The outcome shares of `slopes` (each sample's slope and outcome) weighed onto the

@@ -140,14 +140,25 @@ pub(super) fn json(r: &Report) -> String {
 
 /// Where the sweep came from.
 fn provenance(p: &Provenance) -> Json {
-    object! {
+    let mut o = object! {
         "sweep": p.sweep.display().to_string(),
         "in_memory": p.in_memory,
         "seed": p.seed.as_deref().and_then(|s| s.parse::<u64>().ok()),
         "samples": p.samples,
         "engine": p.engine.clone(),
         "dampers": p.dampers,
+    };
+    // Only a file short of its samples says so: an interrupted sweep's.
+    if let (Json::Object(keys), Some((asked, note))) = (&mut o, &p.interrupted) {
+        keys.push((
+            "interrupted",
+            object! {
+                "samples_asked": *asked,
+                "note": note.clone(),
+            },
+        ));
     }
+    o
 }
 
 /// A count of samples: `count`, `share`, `low`, `high`.

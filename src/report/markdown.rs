@@ -49,6 +49,9 @@ fn write_outcomes(
         p.seed.as_deref().unwrap_or("?"),
         p.engine.as_deref().unwrap_or("?")
     );
+    if let Some((_, note)) = &p.interrupted {
+        let _ = writeln!(t, "**{note}.**\n");
+    }
     let _ = writeln!(t, "## Outcomes\n");
     let _ = writeln!(
         t,

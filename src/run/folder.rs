@@ -34,7 +34,7 @@ pub fn lock_folder(dir: &Path, shard: bool) -> anyhow::Result<FolderLock> {
 /// that is none of `files` (this study's, by name without folder, shard or suffix).
 pub fn refuse_other_study(dir: &Path, id: &StudyId<'_>, files: &[PathBuf]) -> anyhow::Result<()> {
     let elsewhere = "give this study another --out-dir, or remove the other study's files";
-    let table = dir.join("study.arrow");
+    let [table, ..] = crate::study::table_files(dir);
     // A table there (not a device or FIFO the user put in its place) must be this study's.
     if std::fs::metadata(&table).is_ok_and(|m| m.is_file()) {
         let meta = crate::output::read::format_of(&table)

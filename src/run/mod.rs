@@ -8,7 +8,7 @@ mod eta;
 mod execute;
 mod folder;
 mod load;
-mod memory;
+pub mod memory;
 mod plan;
 mod signals;
 pub mod site;

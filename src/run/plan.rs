@@ -77,7 +77,7 @@ impl SweepPlan {
             return SweepPlan::resuming(out, args.inputs.as_deref(), args.kernel);
         }
         if let Some(out) = &args.out {
-            crate::output::check_output_path(out)?;
+            crate::output::check_sweep_output_path(out)?;
         }
         let (scenario, text) = match &args.scenario_toml {
             Some(text) => scenario_of_text(text, args.seed)?,
@@ -161,7 +161,7 @@ impl SweepPlan {
                 kernel.arithmetic()
             );
         }
-        crate::output::check_output_path(out)?;
+        crate::output::check_sweep_output_path(out)?;
         Ok(SweepPlan {
             scenario,
             text: from.scenario_toml.clone(),

@@ -259,7 +259,7 @@ pub fn run_step(kept: &Kept<'_>, step: Step, running: &Running<'_>) -> anyhow::R
             Done::Resumed(execute(&plan, running.options)?)
         }
         Step::Run => {
-            crate::output::check_output_path(&file)?;
+            crate::output::check_sweep_output_path(&file)?;
             let kernel = kernels::isa::KernelKind {
                 isa: running.kernel.isa()?,
                 precision: kept.scenario.simulation.precision,

@@ -178,6 +178,19 @@ pub fn run(args: &StudySettings) -> anyhow::Result<Study> {
         bail!("--out-dir {}: that is a file, not a folder", dir.display());
     }
     let points = points(args, &parsed)?;
+    // Every file the study writes is refused before the first sample if one may not be
+    // written (an input of this command under its name, say).
+    let mut outputs: Vec<PathBuf> = points
+        .iter()
+        .map(|p| {
+            args.shard
+                .map_or_else(|| p.file.clone(), |s| shard_file(&p.file, s))
+        })
+        .collect();
+    if args.shard.is_none() {
+        outputs.extend(crate::study::table_files(dir));
+    }
+    crate::output::set::check(&outputs)?;
     let lock = super::folder::lock_folder(dir, args.shard.is_some())?;
     let id = super::folder::StudyId {
         key: &args.vary.key,

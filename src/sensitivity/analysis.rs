@@ -24,6 +24,9 @@ pub struct Analysis {
     pub base_points: usize,
     /// Rows in the file.
     pub rows: u64,
+    /// What to say of the file where it holds fewer samples than it asked for: an
+    /// interrupted sweep's (`output::sweep::interrupted_note`).
+    pub interrupted: Option<String>,
     /// The sweep's seed, which also seeds the bootstrap.
     pub seed: u64,
     /// Bootstrap replicates asked for per output.
@@ -57,6 +60,7 @@ pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analy
     if bootstrap == 0 || bootstrap > 100_000 {
         bail!("--bootstrap {bootstrap}: from 1 to 100000 replicates");
     }
+    let asked = crate::output::sweep::samples_asked(|k| meta.get(k));
     let varied = crate::scenario::design_inputs(&scenario);
     let d = varied.len();
     let legs = file.legs();
@@ -122,6 +126,7 @@ pub fn analyse(path: &std::path::Path, bootstrap: usize) -> anyhow::Result<Analy
         outputs,
         base_points: n,
         rows,
+        interrupted: crate::output::sweep::interrupted_note(path, rows, asked),
         seed: scenario.seed,
         bootstrap,
     })

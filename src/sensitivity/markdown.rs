@@ -18,11 +18,15 @@ pub fn markdown(path: &std::path::Path, analysis: &Analysis) -> String {
         outputs,
         base_points: n,
         rows,
+        interrupted,
         seed,
         bootstrap,
     } = analysis;
     let mut t = String::new();
     let _ = writeln!(t, "# touchdown sensitivity: {}\n", path.display());
+    if let Some(note) = interrupted {
+        let _ = writeln!(t, "**{note}.**\n");
+    }
     let _ = writeln!(
         t,
         "{n} base points of Saltelli's design ({} samples each: A, B and one AB_i per varied \

@@ -404,7 +404,9 @@ run_with() {
     end=$(date +%s.%N)
     awk -v n="$set_name" -v b="$2" -v a="$start" -v e="$end" \
         'BEGIN { printf "same-bytes: %s (%s): %.1f s\n", n, b, e - a }' >&2
-    sort -rn "$logs/times.txt" | head -n 5 | sed "s/^/same-bytes: $set_name: slowest: /" >&2
+    # sed, not head: head would close the pipe while sort still writes (SIGPIPE, and the
+    # script ends under pipefail once times.txt outgrows one write).
+    sort -rn "$logs/times.txt" | sed -n "1,5s/^/same-bytes: $set_name: slowest: /p" >&2
 }
 
 # ---------------------------------------------------------------------------------------

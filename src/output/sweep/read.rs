@@ -199,6 +199,55 @@ impl SweepBatch<'_> {
     }
 }
 
+/// The samples a sweep file whose schema metadata `meta` gives asked for: its slice's for a
+/// shard (`touchdown.sample_range`), else the sweep's (`touchdown.samples`); `None` where it
+/// does not say.
+#[must_use]
+pub fn samples_asked<'a>(meta: impl Fn(&str) -> Option<&'a String>) -> Option<u64> {
+    match meta(super::schema::SHARD_KEYS[1]) {
+        Some(range) => {
+            let (a, b) = range.split_once("..")?;
+            b.parse::<u64>().ok()?.checked_sub(a.parse().ok()?)
+        }
+        None => meta("touchdown.samples")?.parse().ok(),
+    }
+}
+
+/// What a reader says of the sweep file `name` that holds `rows` of the `asked` samples
+/// (`samples_asked`) where it holds fewer: an interrupted sweep's rows, under the name it
+/// was left at (`OUT.interrupted`) or renamed. `None` for a complete file.
+#[must_use]
+pub fn interrupted_note(name: &Path, rows: u64, asked: Option<u64>) -> Option<String> {
+    let asked = asked.filter(|a| rows < *a)?;
+    let file = name.file_name().unwrap_or_default().to_string_lossy();
+    let resume = match file.strip_suffix(".interrupted") {
+        Some(out) => format!(
+            "`touchdown sweep --resume {}` finishes it",
+            name.with_file_name(out).display()
+        ),
+        None => "`touchdown sweep --resume OUT` finishes it once it is named OUT.interrupted"
+            .to_string(),
+    };
+    Some(format!(
+        "{} of {} samples: an interrupted sweep; {resume}",
+        grouped(rows),
+        grouped(asked)
+    ))
+}
+
+/// `n` with its digits in groups of three: `3,000`.
+fn grouped(n: u64) -> String {
+    let digits = n.to_string();
+    let mut t = String::new();
+    for (i, d) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            t.push(',');
+        }
+        t.push(d);
+    }
+    t
+}
+
 /// The number of legs of a sweep file with `schema` (its per-leg peak force columns).
 #[must_use]
 pub fn leg_count(schema: &arrow_schema::Schema) -> usize {
@@ -207,4 +256,35 @@ pub fn leg_count(schema: &arrow_schema::Schema) -> usize {
         .iter()
         .filter(|f| f.name().ends_with("_peak_normal_force_n"))
         .count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_file_short_of_its_samples_is_said_to_be_interrupted() {
+        let note = interrupted_note(Path::new("d/s.arrow.interrupted"), 1113, Some(3000));
+        assert_eq!(
+            note.as_deref(),
+            Some(
+                "1,113 of 3,000 samples: an interrupted sweep; `touchdown sweep --resume \
+                 d/s.arrow` finishes it"
+            )
+        );
+        let renamed = interrupted_note(Path::new("part.arrow"), 999_999, Some(1_000_000));
+        assert!(renamed.is_some_and(|n| n.starts_with("999,999 of 1,000,000 samples")));
+        assert_eq!(
+            interrupted_note(Path::new("s.arrow"), 3000, Some(3000)),
+            None
+        );
+        assert_eq!(interrupted_note(Path::new("s.arrow"), 3000, None), None);
+        let whole = arrow_schema::Metadata::from([("touchdown.samples", "3000")]);
+        assert_eq!(samples_asked(|k| whole.get(k)), Some(3000));
+        let shard = arrow_schema::Metadata::from([
+            ("touchdown.samples", "3000"),
+            ("touchdown.sample_range", "1000..2000"),
+        ]);
+        assert_eq!(samples_asked(|k| shard.get(k)), Some(1000));
+    }
 }

@@ -28,12 +28,17 @@ struct FileOut {
 
 /// Writes rows as they come, in batches of `BATCH_ROWS`, to a file that appears under its
 /// name only after `finish`; or keeps the batches in memory (`in_memory`, `keeping`), or
-/// both.
+/// both. A resumed sweep's first batch may begin with rows it took over (`hold`).
 pub struct SweepWriter {
     out: Option<FileOut>,
     schema: SchemaRef,
     legs: usize,
     pending: Vec<Row>,
+    /// Rows of the batch being made that came as a record batch (`hold`: those a resumed
+    /// sweep took over after its whole batches), before the `pending` ones.
+    held: Option<RecordBatch>,
+    /// The rows `pending` takes before its batch is full: `BATCH_ROWS` less the held ones.
+    room: usize,
     rows: u64,
     /// The table of inputs whose columns pass through (`--keep-columns`).
     table: Option<Arc<crate::scenario::InputTable>>,
@@ -83,6 +88,8 @@ impl SweepWriter {
             schema: schema(legs, info),
             legs,
             pending: Vec::with_capacity(BATCH_ROWS),
+            held: None,
+            room: BATCH_ROWS,
             rows: 0,
             table: None,
             kept: Some(Vec::new()),
@@ -107,16 +114,36 @@ impl SweepWriter {
     pub fn push(&mut self, rows: Vec<Row>) -> anyhow::Result<()> {
         for row in rows {
             self.pending.push(row);
-            if self.pending.len() == BATCH_ROWS {
+            if self.pending.len() == self.room {
                 self.flush()?;
             }
         }
         Ok(())
     }
 
+    /// Takes `rows` (fewer than a batch, in this writer's schema) as the first rows of the
+    /// next batch, which the rows pushed after them fill: a resumed sweep's rows after the
+    /// whole batches it took over, so that its file is cut into the batches of a sweep that
+    /// never stopped.
+    pub fn hold(&mut self, rows: RecordBatch) {
+        debug_assert!(
+            self.pending.is_empty() && self.held.is_none() && rows.num_rows() < BATCH_ROWS,
+            "hold before push, less than a batch"
+        );
+        if rows.num_rows() > 0 {
+            self.room = BATCH_ROWS - rows.num_rows();
+            self.held = Some(rows);
+        }
+    }
+
     fn flush(&mut self) -> anyhow::Result<()> {
+        self.room = BATCH_ROWS;
+        let held = self.held.take();
         if self.pending.is_empty() {
-            return Ok(());
+            return match held {
+                Some(b) => self.write_batch(&zero_nulls(&b)?),
+                None => Ok(()),
+            };
         }
         let first = self.pending[0].sample.index;
         debug_assert!(
@@ -132,7 +159,10 @@ impl SweepWriter {
         };
         let b = batch(&self.schema, self.legs, &self.pending, kept)?;
         self.pending.clear();
-        self.write_batch(&b)
+        match held {
+            Some(h) => self.write_batch(&zero_nulls(&concat_batches(&self.schema, [&h, &b])?)?),
+            None => self.write_batch(&b),
+        }
     }
 
     /// The schema every batch is written in.
@@ -260,6 +290,15 @@ impl Rebatcher {
             return Ok(());
         }
         self.write(writer)
+    }
+
+    /// Hands the rows left, fewer than a batch, to `writer` as the first rows of its next
+    /// batch (`SweepWriter::hold`), rather than writing them as a shorter batch.
+    pub fn hand_over(self, writer: &mut SweepWriter) -> anyhow::Result<()> {
+        if !self.pieces.is_empty() {
+            writer.hold(concat_batches(&self.schema, &self.pieces)?);
+        }
+        Ok(())
     }
 
     /// Writes the pieces as one batch of fresh (unsliced) arrays.

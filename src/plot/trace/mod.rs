@@ -13,4 +13,4 @@ mod pictures;
 mod series;
 mod thrust;
 
-pub(super) use pictures::plot;
+pub(super) use pictures::{PICTURES, plot};

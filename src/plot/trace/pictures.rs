@@ -7,33 +7,33 @@ use super::thrust::{sensors_picture, thrust_picture};
 use crate::plot::canvas::{Area, FONT, Line, drawing, line_panel, save_png};
 use std::path::{Path, PathBuf};
 
+/// The pictures of a trace, by the end of their names: the last two with a control loop
+/// only (thrust; sensors where the loop senses).
+pub(crate) const PICTURES: [&str; 6] =
+    ["cg", "legs", "path-3d", "accel-z-body", "thrust", "sensors"];
+
 /// Writes the trace's pictures, named by `name`; returns their paths.
 pub(crate) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Result<Vec<PathBuf>> {
     let tr = Series::read(path)?;
     let mut written = Vec::new();
+    let [cg, legs, path3d, shock, thrust, sensors] = PICTURES.map(name);
 
-    let cg = name("cg");
     save_png(&cg, (1100, 1300), |root| cg_picture(root, &tr))?;
     written.push(cg);
 
-    let legs = name("legs");
     save_png(&legs, (1100, 1300), |root| legs_picture(root, &tr))?;
     written.push(legs);
 
-    let path3d = name("path-3d");
     save_png(&path3d, (1000, 900), |root| path_3d(root, &tr))?;
     written.push(path3d);
 
-    let shock = name("accel-z-body");
     save_png(&shock, (1100, 800), |root| shock_picture(root, &tr))?;
     written.push(shock);
 
     if tr.trace.thrusters > 0 {
-        let thrust = name("thrust");
         save_png(&thrust, (1100, 1300), |root| thrust_picture(root, &tr))?;
         written.push(thrust);
         if tr.trace.has_column("sensed_tilt_deg") {
-            let sensors = name("sensors");
             save_png(&sensors, (1100, 1300), |root| sensors_picture(root, &tr))?;
             written.push(sensors);
         }
