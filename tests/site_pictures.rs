@@ -364,6 +364,33 @@ fn a_map_of_nothing_or_of_bad_triangles_is_refused_and_nan_is_drawn_grey() {
     assert_eq!(at(&img, right, 40.0, 37.0), NO_SHARES);
 }
 
+/// Issue 45: the slope's scale runs from 0 to 90 deg on every map, whatever the steepest
+/// facet (before: to the steepest rounded up, 0-150 deg here), so that maps compare; a
+/// steeper facet takes the scale's top colour.
+#[test]
+fn the_slope_scale_is_0_to_90_deg_for_every_body() {
+    let mut site = sphere(LONS, BANDS);
+    for f in &mut site.facets {
+        if f.latitude_deg > 75.0 {
+            // The effective gravity off the ground, as on a fast spinner.
+            f.slope_deg = 150.0;
+        }
+    }
+    let (img, _, right) = drawn(&site, &TempDir::new("site-slope-scale"), "slopes.png");
+    for (lon, lat, slope) in [
+        (40.0, 37.0, 37.5),
+        (-100.0, -52.0, 52.5),
+        (-100.0, 86.0, 90.0),
+    ] {
+        let got = at(&img, right, lon, lat);
+        let expect = scale_colour(&SLOPE_SCALE, slope / 90.0);
+        assert!(
+            of_colour(got, expect),
+            "{lon}, {lat}: {got:?} against {expect:?}"
+        );
+    }
+}
+
 /// The solid angle of the triangle `t` seen from the origin, sr (van Oosterom and
 /// Strackee 1983).
 fn solid_angle(t: [[f64; 3]; 3]) -> f64 {
@@ -386,7 +413,7 @@ fn of_colour(pixel: [u8; 3], colour: [u8; 3]) -> bool {
 /// body's centre (Mollweide's projection is equal-area, and the facet is drawn as its true
 /// outline, its straight edges curved on the map): a polar facet (pole to 60 deg, 60 deg
 /// wide) and one at the equator, each within the pixels along its border of its solid
-/// angle's share. The equirectangular map before drew the polar one at 2.5 times that.
+/// angle's share. The equirectangular map before drew the polar one at 2.9 times that.
 #[test]
 fn each_facet_takes_its_share_of_the_map_near_the_poles_too() {
     let mut site = sphere(6, 6);

@@ -222,8 +222,15 @@ pub fn first_intersection(vertices: &[[f64; 3]], facets: &[[u32; 3]]) -> Result<
 /// edge they share.
 fn meet(a: [u32; 3], b: [u32; 3], vertices: &[[f64; 3]]) -> bool {
     let at = |v: u32| vertices[v as usize];
-    let shared: Vec<usize> = (0..3).filter(|&i| b.contains(&a[i])).collect();
-    match shared.as_slice() {
+    // The corners of `a` that `b` shares (no allocation: this runs for every pair).
+    let (mut shared, mut n) = ([0usize; 3], 0);
+    for (i, v) in a.iter().enumerate() {
+        if b.contains(v) {
+            shared[n] = i;
+            n += 1;
+        }
+    }
+    match &shared[..n] {
         [] => triangles_meet(a.map(at), b.map(at)),
         // Rotated so that the shared vertex comes first in both: they meet elsewhere exactly
         // when the edge of one opposite it meets the other (MODEL.md 13.1).
