@@ -169,9 +169,10 @@ pub fn sweep_failures(
                 )
             };
             causes.push(format!(
-                "{rest} at the body's gravity, as low as {g_min:.3e} m/s^2 ({}), where {fall}: \
-                 check --density and --units, or give the scenario a release and a run for \
-                 this gravity (inputs.release_height_m, inputs.velocity_error_z_m_s, \
+                "{rest} at the body's gravity, as low as {g_min:.3e} m/s^2 ({}), where {fall} \
+                 (the run lasts {t_max_s} s): if that is not the body's gravity, check \
+                 --density and --units; if it is, give the scenario a release and a run for \
+                 it (inputs.release_height_m, inputs.velocity_error_z_m_s, \
                  simulation.t_max_s)",
                 body.provenance(),
             ));
