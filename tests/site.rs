@@ -83,6 +83,22 @@ fn run_site(dir: &TempDir, args: &[String]) -> crate::common::Run {
     touchdown(dir.path(), &args)
 }
 
+/// Runs `touchdown site sphere.obj` (in metres, spinning in `PERIOD_H`) in `dir` with a
+/// sample count, an output folder and `extra`.
+fn run_sphere(dir: &TempDir, samples: &str, out: &str, extra: &[&str]) -> crate::common::Run {
+    run_site(
+        dir,
+        &site_args(
+            "sphere.obj",
+            "m",
+            &PERIOD_H.to_string(),
+            samples,
+            out,
+            extra,
+        ),
+    )
+}
+
 /// The stable count and the sample count a sweep's summary prints.
 fn stable_of(stdout: &str) -> (u64, u64) {
     let number = |key: &str| {
@@ -262,11 +278,33 @@ fn bad_shapes_and_flags_are_refused_naming_them() {
         .collect::<Vec<_>>()
         .join("\n");
     let degenerate = format!("{whole}v 2 0 0\nv 3 0 0\nf 1 9 10\n");
+    let moved = cube.replace("v 0", "v 0.5").replace("v 1", "v 1.5");
+    let shifted: Vec<String> = faces
+        .iter()
+        .map(|f| {
+            let v: Vec<u32> = f[2..]
+                .split(' ')
+                .map(|x| x.parse::<u32>().unwrap() + 8)
+                .collect();
+            format!("f {} {} {}", v[0], v[1], v[2])
+        })
+        .collect();
+    let overlapping = format!(
+        "{cube}{moved}{}\n{}\n",
+        faces.join("\n"),
+        shifted.join("\n")
+    );
     for (name, text, expect) in [
         ("open", open.as_str(), "not closed"),
         ("inverted", inverted.as_str(), "inverted"),
         ("degenerate", degenerate.as_str(), "degenerate"),
         ("not OBJ", "v 1 2\n", "line 1"),
+        // Two copies of the cube, the second moved by half its side: they overlap.
+        (
+            "overlapping",
+            overlapping.as_str(),
+            "intersects itself: facets",
+        ),
     ] {
         dir.write("body.obj", text);
         let run = run_site(
@@ -458,22 +496,302 @@ fn a_map_without_a_landing_site_says_none() {
         "spin.toml",
         "[inputs]\nrate_x_deg_s = 200.0\n[simulation]\nt_max_s = 20.0\n",
     );
+    let run = run_sphere(&dir, "200", "map", &["--scenario", "spin.toml", "--quiet"]);
+    run.assert_ok();
+    let summary = std::fs::read_to_string(dir.join("map/site.md")).expect("site.md");
+    assert!(
+        summary.contains(
+            "**P(stable) >= 0.99 with 95 % confidence (the low end of its Wilson interval) on \
+             0.00 % of the surface** (0 m^2); by the point estimate (its share of samples \
+             alone) on 0.00 % (0 m^2)."
+        ),
+        "{summary}"
+    );
+}
+
+/// The `samples` column of a facets' table.
+fn samples_of(path: &std::path::Path) -> Vec<u64> {
+    let file = std::fs::File::open(path).expect("open the table");
+    let reader = arrow_ipc::reader::FileReader::try_new(file, None).expect("an Arrow file");
+    let mut out = Vec::new();
+    for b in reader {
+        let b = b.expect("a batch");
+        let c = b.column_by_name("samples").expect("a samples column");
+        let c = c
+            .as_any()
+            .downcast_ref::<arrow_array::UInt64Array>()
+            .expect("UInt64");
+        out.extend(c.values().iter().copied());
+    }
+    out
+}
+
+/// The share of the surface a row of the summary's P(stable) table gives, %.
+fn row_share(summary: &str, row: &str) -> f64 {
+    summary
+        .lines()
+        .find(|l| l.starts_with(&format!("| {row}")))
+        .and_then(|l| l.rsplit('|').nth(1))
+        .and_then(|c| c.trim().trim_end_matches(" %").parse().ok())
+        .unwrap_or_else(|| panic!("no row {row:?} in {summary}"))
+}
+
+/// Issue 45: facets that could be stood on but whose windows held no sample are "no
+/// samples", not "too steep" (on a sphere whose steepest facet is 20 deg, nothing is too
+/// steep); and `--samples` too few for a map is refused before its sweep, 0 as a sweep
+/// refuses it, where before a map of 0 or 1 samples printed NaN shares.
+#[test]
+fn facets_without_samples_are_told_apart_from_steep_ones_and_too_few_samples_refused() {
+    let dir = TempDir::new("site-no-samples");
+    dir.write("sphere.obj", &obj(&icosphere(RADIUS_M, 2)));
+    // +-0.05 deg of slope: about 1.5 samples a window, many facets with none.
+    let fine = ["--slope-window", "0.05", "--quiet"];
+    run_sphere(&dir, "2000", "fine", &fine).assert_ok();
+    let table = dir.join("fine/facets.arrow");
+    let (slope, area) = (
+        column(&table, "slope_deg").unwrap(),
+        column(&table, "area_m2").unwrap(),
+    );
+    // Every facet could be stood on (under 21 deg): those without shares had no samples.
+    assert!(slope.iter().all(|s| *s < 21.0), "{slope:?}");
+    let samples = samples_of(&table);
+    let total: f64 = area.iter().sum();
+    let empty: f64 = (0..area.len())
+        .filter(|&i| samples[i] == 0)
+        .map(|i| area[i])
+        .sum::<f64>()
+        / total;
+    assert!(empty > 0.05, "{empty}");
+    let summary = std::fs::read_to_string(dir.join("fine/site.md")).unwrap();
+    let no_samples = row_share(&summary, "none: no samples in its window");
+    assert!(
+        (no_samples - 100.0 * empty).abs() < 0.006,
+        "{no_samples}: {summary}"
+    );
+    assert_eq!(row_share(&summary, "none: too steep"), 0.0, "{summary}");
+    assert!(
+        summary.contains("Samples per facet a lander could stand on: 0 at least"),
+        "{summary}"
+    );
+    assert!(!summary.contains("NaN"), "{summary}");
+    // 0 as a sweep refuses it; 1, and 50 (0.04 a window), too few for this map: the message
+    // names the flag and how many it needs.
+    for (n, expect) in [
+        ("0", "--samples must be at least 1"),
+        ("1", "--samples 1: too few for this map"),
+        ("50", "--samples 50: too few for this map"),
+    ] {
+        let run = run_sphere(&dir, n, &format!("few-{n}"), &fine);
+        assert_eq!(run.code, Some(2), "{n}: {run}");
+        assert!(run.stderr.contains(expect), "{n}: {run}");
+        assert!(!dir.join(&format!("few-{n}/sweep.arrow")).exists(), "{n}");
+    }
+    // The least count accepted is the one named.
+    let refused = run_sphere(&dir, "50", "few", &["--quiet"]);
+    let needed = refused
+        .stderr
+        .split("needs at least ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .unwrap_or_else(|| panic!("{refused}"))
+        .to_string();
+    run_sphere(&dir, &needed, "enough", &["--quiet"]).assert_ok();
+}
+
+/// Issue 45: samples that diverged or never touched the ground are counted in the summary,
+/// and the warning names the likely cause, the body's gravity from its density and units:
+/// at 1e12 kg/m^3 every sample diverges (before: a map of 0 everywhere, a warning of a
+/// release too high); on a 400 m body the default lander (made for 0.0168 m/s^2) often
+/// leaves the ground for good.
+#[test]
+fn diverged_and_untouched_samples_are_counted_and_their_cause_named() {
+    let dir = TempDir::new("site-failures");
+    dir.write("sphere.obj", &obj(&icosphere(RADIUS_M, 1)));
     let period = PERIOD_H.to_string();
+    let mut args = site_args("sphere.obj", "m", &period, "300", "dense", &["--quiet"]);
+    args[5] = "1e12".into();
+    let run = run_site(&dir, &args);
+    assert_eq!(run.code, Some(0), "{run}");
+    let summary = std::fs::read_to_string(dir.join("dense/site.md")).unwrap();
+    assert!(
+        summary.contains(
+            "Of the sweep's 300 samples, 300 (100.00 %) diverged and 0 (0.00 %) never touched"
+        ),
+        "{summary}"
+    );
+    for text in [&summary, &run.stderr] {
+        assert!(
+            text.contains("300 of the 300 samples (100.00 %) diverged")
+                && text.contains("--density 1000000000000 kg/m^3")
+                && text.contains("check --density (kg/m^3) and --units"),
+            "{text}"
+        );
+    }
+    assert!(!run.stderr.contains("release too high"), "{run}");
+    // A body of 400 m at 2000 kg/m^3: about 1.1e-4 m/s^2.
+    dir.write("small.obj", &obj(&icosphere(200.0, 1)));
+    let run = run_site(
+        &dir,
+        &site_args("small.obj", "m", "12", "300", "small", &["--quiet"]),
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    let summary = std::fs::read_to_string(dir.join("small/site.md")).unwrap();
+    let untouched = summary
+        .split("diverged and ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|n| n.parse::<u64>().ok())
+        .unwrap_or_else(|| panic!("{summary}"));
+    // The default scenario's upward velocity errors (sd 0.05 m/s) outrun its touchdown
+    // speed here (sqrt(2 g h) = 0.03-0.05 m/s) in about a quarter of the samples.
+    assert!((30..=150).contains(&untouched), "{untouched}: {summary}");
+    let warning = format!("{untouched} of the 300 samples");
+    for text in [&summary, &run.stderr] {
+        assert!(
+            text.contains(&warning)
+                && text.contains("never touched the ground")
+                && text.contains("check --density and --units"),
+            "{text}"
+        );
+    }
+    assert!(!run.stderr.contains("release too high"), "{run}");
+}
+
+/// Issue 45: the safe-area headline counts the facets whose P(stable) is at least 0.99
+/// with 95 % confidence (the low end of the Wilson interval), the point estimate beside it:
+/// a lander that always stays is "1.0" on every facet, yet a few hundred samples a window
+/// cannot show 0.99 with confidence (n / (n + 1.96^2) < 0.99 below 381 samples).
+#[test]
+fn the_safe_area_counts_facets_sure_to_be_safe() {
+    let dir = TempDir::new("site-sure");
+    dir.write("sphere.obj", &obj(&icosphere(RADIUS_M, 1)));
+    // Set down gently with no errors, on a sphere spinning slowly (slopes under 1 deg).
+    dir.write(
+        "calm.toml",
+        "[inputs]\nrelease_height_m = 0.05\nrate_x_deg_s = 0.0\nrate_y_deg_s = 0.0\n\
+         rate_z_deg_s = 0.0\nroll_deg = 0.0\npitch_deg = 0.0\nvelocity_error_x_m_s = 0.0\n\
+         velocity_error_y_m_s = 0.0\nvelocity_error_z_m_s = 0.0\n[simulation]\nt_max_s = 30.0\n",
+    );
     let run = run_site(
         &dir,
         &site_args(
             "sphere.obj",
             "m",
-            &period,
-            "200",
+            "1000",
+            "300",
             "map",
-            &["--scenario", "spin.toml", "--quiet"],
+            &["--scenario", "calm.toml", "--quiet"],
         ),
     );
     run.assert_ok();
-    let summary = std::fs::read_to_string(dir.join("map/site.md")).expect("site.md");
+    let table = dir.join("map/facets.arrow");
+    let get = |name: &str| column(&table, name).unwrap();
+    let (p, low, area) = (get("p_stable"), get("p_stable_low"), get("area_m2"));
+    let total: f64 = area.iter().sum();
+    let share = |keep: &dyn Fn(usize) -> bool| {
+        // `+ 0.0`: an empty sum is -0.0.
+        100.0
+            * (0..p.len())
+                .filter(|&i| keep(i))
+                .map(|i| area[i])
+                .sum::<f64>()
+            / total
+            + 0.0
+    };
+    let sure = share(&|i| low[i] >= 0.99);
+    let point = share(&|i| p[i] >= 0.99);
+    // Every lander stays, and no window is large enough to be sure of it.
+    assert!(point > 99.99 && sure < 0.01, "{point} {sure}");
+    let summary = std::fs::read_to_string(dir.join("map/site.md")).unwrap();
     assert!(
-        summary.contains("**P(stable) >= 0.99 on 0.00 % of the surface** (0 m^2)."),
+        summary.contains(&format!(
+            "**P(stable) >= 0.99 with 95 % confidence (the low end of its Wilson interval) on \
+             {sure:.2} % of the surface** (0 m^2); by the point estimate (its share of samples \
+             alone) on {point:.2} % ("
+        )),
         "{summary}"
+    );
+}
+
+/// Issue 45: a body whose size or gravity no small body has for the given `--units` is
+/// warned of, naming the flag: a model in kilometres read as metres is a 0.78 m, 500 kg
+/// body with a gravity of 2.4e-7 m/s^2 (before: mapped silently).
+#[test]
+fn a_body_implausible_for_its_units_is_warned_of() {
+    let dir = TempDir::new("site-units");
+    // Didymos's size in km (0.39 km in radius), read as metres.
+    dir.write("km.obj", &obj(&icosphere(0.39, 1)));
+    let mut args = site_args("km.obj", "m", "5", "200", "map", &["--quiet"]);
+    args[5] = "2170".into();
+    let run = run_site(&dir, &args);
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(
+        run.stderr.contains("km.obj: implausible for a small body")
+            && run.stderr.contains("--units km makes it")
+            && run.stderr.contains("its gravity, about 2."),
+        "{run}"
+    );
+    // The same in km: no warning of it.
+    args[3] = "km".into();
+    args[11] = "inkm".into();
+    let run = run_site(&dir, &args);
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(!run.stderr.contains("implausible"), "{run}");
+}
+
+/// Issue 45: a gravity that will take more than a few minutes says so, with its
+/// estimate, before it starts, on a pipe as on a terminal (before: only a terminal's bar).
+/// 327,680 facets on one thread take over an hour (a few thousand facets a second);
+/// the run is stopped once it has said so.
+#[test]
+fn a_long_gravity_says_how_long_before_it_starts() {
+    use std::io::BufRead as _;
+    let dir = TempDir::new("site-long-gravity");
+    dir.write("big.obj", &obj(&icosphere(RADIUS_M, 7)));
+    let args = site_args(
+        "big.obj",
+        "m",
+        &PERIOD_H.to_string(),
+        "1000",
+        "map",
+        &["--threads", "1", "--quiet"],
+    );
+    let mut child = std::process::Command::new(crate::common::BIN)
+        .args(&args)
+        .current_dir(dir.path())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start touchdown");
+    let stderr = child.stderr.take().unwrap();
+    let (send, lines) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(stderr)
+            .lines()
+            .map_while(Result::ok)
+        {
+            let _ = send.send(line);
+        }
+    });
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    let mut told = None;
+    while let Some(left) = deadline.checked_duration_since(std::time::Instant::now()) {
+        match lines.recv_timeout(left) {
+            Ok(line) if line.contains("the gravity of its") => {
+                told = Some(line);
+                break;
+            }
+            Ok(_) => {}
+            Err(_) => break,
+        }
+    }
+    let _ = child.kill();
+    let _ = child.wait();
+    let told = told.expect("no estimate of the gravity's time within 60 s");
+    assert!(
+        told.contains("big.obj: the gravity of its 327680 facets will take about ")
+            && told.contains("on 1 thread (measured on ")
+            && told.contains("takes about 10 min"),
+        "{told}"
     );
 }

@@ -1,7 +1,9 @@
-//! The pictures of a landing-site map (issue 34): the map picture draws each facet at its
-//! longitude and latitude in the colour of its P(stable) and of its slope, crossing the
-//! seam without smearing; the 3D page holds every facet's numbers, fetches nothing, and in
-//! headless Chromium draws the body and names the facet under the pointer.
+//! The pictures of a landing-site map (issues 34 and 45): the map picture draws each facet
+//! at its longitude and latitude, in Mollweide's equal-area projection, as its true outline
+//! (a facet takes the share of the map that it takes of the sphere of directions), in the
+//! colour of its P(stable) and of its slope, crossing the seam without smearing; the 3D
+//! page holds every facet's numbers, fetches nothing, and in headless Chromium draws the
+//! body and names the facet under the pointer.
 //!
 //! The site is made up here: a UV sphere whose facets' numbers are functions of their
 //! latitude band (and, in the seam's column, of their longitude), so the colour of every
@@ -12,7 +14,8 @@ use crate::common::TempDir;
 use std::path::Path;
 use std::process::Command;
 use touchdown::plot::site::{
-    NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, p_stable_colour, scale_colour, site_map,
+    NO_SAMPLES, NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, mollweide, p_stable_colour,
+    scale_colour, site_map,
 };
 use touchdown::site::{Body, FacetShare, Site, SiteFacet};
 use touchdown::view::site::site_page;
@@ -26,7 +29,7 @@ const LON0: f64 = 7.5;
 const RADIUS_M: f64 = 200.0;
 
 /// P(stable) of a facet in the band around latitude `band_deg` (its middle) with its
-/// centroid at longitude `lon_deg`: no shares above 60 deg of latitude, a landing site
+/// centroid at longitude `lon_deg`: no samples above 60 deg of latitude, a landing site
 /// within 15 of the equator, 0 in the seam's column, else rising with latitude.
 fn p_stable(band_deg: f64, lon_deg: f64) -> Option<f64> {
     match band_deg.abs() {
@@ -50,12 +53,23 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [(1, 2), (2, 0), (0, 1)].map(|(i, j)| a[i] * b[j] - a[j] * b[i])
 }
 
-/// A share `p` with an interval of +-0.02 within [0, 1].
+/// A share `p` with an interval of +-0.004 within [0, 1]: a landing site at 0.995.
 fn share(p: f64) -> FacetShare {
     FacetShare {
         p,
-        low: (p - 0.02).max(0.0),
-        high: (p + 0.02).min(1.0),
+        low: (p - 0.004).max(0.0),
+        high: (p + 0.004).min(1.0),
+    }
+}
+
+/// The colour of a facet of P(stable) `p` on the map: a landing site from 0.994 (its
+/// interval's low end 0.99), no samples without shares (every facet here could be stood
+/// on).
+fn colour_of(p: Option<f64>) -> [u8; 3] {
+    match p {
+        Some(p) if p >= 0.994 => SAFE,
+        Some(p) => p_stable_colour(Some(p)),
+        None => NO_SAMPLES,
     }
 }
 
@@ -160,27 +174,24 @@ fn keep(file: &Path) {
     }
 }
 
-/// The frame of the map between columns `from` and `to` (the rows of its black edges: the
-/// longest runs of black, 400 pixels or more).
-fn frame(img: &image::RgbImage, from: u32, to: u32) -> Frame {
-    let mut rows = Vec::new();
-    for y in 0..img.height() {
-        let (mut run, mut best) = (0, (0, 0));
-        for x in from..to {
-            run = (run + 1) * u32::from(img.get_pixel(x, y).0 == [0, 0, 0]);
-            if run > best.1 - best.0 {
-                best = (x + 1 - run, x);
+/// Half the width and half the height of Mollweide's map, in its own units.
+const HALF_WIDTH: f64 = 2.0 * std::f64::consts::SQRT_2;
+const HALF_HEIGHT: f64 = std::f64::consts::SQRT_2;
+
+/// The frame of the map from column `from` (the map's 750 columns, left of its colour
+/// bar): the box round its edge, the only pure black drawn there (below the title).
+fn frame(img: &image::RgbImage, from: u32) -> Frame {
+    let (mut l, mut r, mut t, mut b) = (u32::MAX, 0, u32::MAX, 0);
+    for y in 50..img.height() {
+        for x in from..from + 750 {
+            if img.get_pixel(x, y).0 == [0, 0, 0] {
+                (l, r, t, b) = (l.min(x), r.max(x), t.min(y), b.max(y));
             }
         }
-        if best.1 - best.0 >= 400 {
-            rows.push((y, best));
-        }
     }
-    assert!(rows.len() >= 2, "no frame between columns {from} and {to}");
-    let (top, (left, right)) = rows[0];
-    let (bottom, _) = rows[rows.len() - 1];
+    assert!(r > l + 400 && b > t + 200, "no map from column {from}");
     let px = f64::from;
-    (px(left), px(right), px(top), px(bottom))
+    (px(l), px(r), px(t), px(b))
 }
 
 /// The map of `site` written as `name` into `dir` and read back, with its two frames
@@ -190,7 +201,7 @@ fn drawn(site: &Site, dir: &TempDir, name: &str) -> (image::RgbImage, Frame, Fra
     site_map(site, &path).expect("the map");
     keep(&path);
     let img = image::open(&path).expect("a PNG").to_rgb8();
-    let (left, right) = (frame(&img, 0, 900), frame(&img, 900, 1800));
+    let (left, right) = (frame(&img, 0), frame(&img, 900));
     (img, left, right)
 }
 
@@ -200,23 +211,34 @@ type Frame = (f64, f64, f64, f64);
 /// The pixel of the map in `frame` at longitude `lon` and latitude `lat`, deg.
 fn at(img: &image::RgbImage, frame: Frame, lon: f64, lat: f64) -> [u8; 3] {
     let (l, r, t, b) = frame;
-    let x = l + (lon + 180.0) / 360.0 * (r - l);
-    let y = t + (90.0 - lat) / 180.0 * (b - t);
+    let (x, y) = mollweide(lon, lat);
+    let x = l + (x + HALF_WIDTH) / (2.0 * HALF_WIDTH) * (r - l);
+    let y = t + (HALF_HEIGHT - y) / (2.0 * HALF_HEIGHT) * (b - t);
     img.get_pixel(x.round() as u32, y.round() as u32).0
+}
+
+/// The longitude of pixel (`x`, `y`) of the map in `frame`, deg, by Mollweide's inverse
+/// (`lon = pi x / (2 sqrt 2 cos t)`, `sin t = y / sqrt 2`): beyond +-180 outside the map.
+fn lon_at(frame: Frame, x: u32, y: u32) -> f64 {
+    let (l, r, t, b) = frame;
+    let mx = -HALF_WIDTH + (f64::from(x) - l) / (r - l) * 2.0 * HALF_WIDTH;
+    let my = HALF_HEIGHT - (f64::from(y) - t) / (b - t) * 2.0 * HALF_HEIGHT;
+    let theta = (my / HALF_HEIGHT).clamp(-1.0, 1.0).asin();
+    (std::f64::consts::PI * mx / (HALF_WIDTH * theta.cos())).to_degrees()
 }
 
 #[test]
 fn the_map_colours_each_place_by_its_facet_s_p_stable_and_slope() {
     let dir = TempDir::new("site-map");
     let (img, left, right) = drawn(&sphere(LONS, BANDS), &dir, "sphere-map.png");
-    assert_eq!(img.dimensions(), (1800, 700));
-    // About 2 pixels a degree each way (the frames measure 700 x 540 or so): the places
-    // below lie 5 deg or more (10 pixels) from any band's edge, where colours change.
+    assert_eq!(img.dimensions(), (1800, 560));
+    // About 1.9 pixels a degree at the equator (the map's ellipse is some 680 x 340): the
+    // places below lie 5 deg or more from any band's edge, where colours change.
     assert!(
-        left.1 - left.0 > 600.0 && left.3 - left.2 > 400.0,
+        left.1 - left.0 > 600.0 && left.3 - left.2 > 300.0,
         "{left:?}"
     );
-    let expect = |lat: f64, lon: f64| p_stable_colour(p_stable(lat, lon));
+    let expect = |lat: f64, lon: f64| colour_of(p_stable(lat, lon));
     for (lon, lat, band) in [
         (40.0, 7.0, 7.5),
         (-120.0, -5.0, -7.5),
@@ -227,12 +249,15 @@ fn the_map_colours_each_place_by_its_facet_s_p_stable_and_slope() {
         (-100.0, 86.0, 82.5),
         (150.0, -86.0, -82.5),
     ] {
-        // The slope's scale: 0 to 90 deg, the largest slope (82.5) rounded up to 10.
+        // The slope's scale: 0 to 90 deg, for every body.
         let slope_colour = scale_colour(&SLOPE_SCALE, slope(band) / 90.0);
         let got = (at(&img, left, lon, lat), at(&img, right, lon, lat));
-        assert_eq!(got, (expect(band, lon), slope_colour), "{lon}, {lat}");
+        assert!(
+            of_colour(got.0, expect(band, lon)) && of_colour(got.1, slope_colour),
+            "{lon}, {lat}: {got:?}"
+        );
     }
-    assert_eq!((expect(7.5, 40.0), expect(67.5, 40.0)), (SAFE, NO_SHARES));
+    assert_eq!((expect(7.5, 40.0), expect(67.5, 40.0)), (SAFE, NO_SAMPLES));
 }
 
 #[test]
@@ -257,10 +282,15 @@ fn a_facet_around_a_pole_covers_the_map_above_it() {
     (site.body.vertices, site.body.triangles) = (vertices, triangles.to_vec());
     let (img, left, _) = drawn(&site, &TempDir::new("site-pole"), "tetrahedron.png");
     // Its edges run 35 deg above the equator or lower: above them, the top all round.
-    for (lon, lat, colour) in [(-150.0, 60.0, SAFE), (0.0, 86.0, SAFE), (170.0, 50.0, SAFE)] {
-        assert_eq!(at(&img, left, lon, lat), colour, "{lon}, {lat}");
+    for (lon, lat, colour) in [
+        (-150.0, 60.0, SAFE),
+        (10.0, 86.0, SAFE),
+        (170.0, 50.0, SAFE),
+        (50.0, -50.0, NO_SAMPLES),
+    ] {
+        let got = at(&img, left, lon, lat);
+        assert!(of_colour(got, colour), "{lon}, {lat}: {got:?}");
     }
-    assert_eq!(at(&img, left, 60.0, -60.0), NO_SHARES);
 }
 
 #[test]
@@ -269,24 +299,36 @@ fn a_facet_across_the_seam_shows_on_both_edges_and_nowhere_between() {
     // The seam's column (P(stable) 0 between 15 and 60 deg of latitude): its facets span
     // 172.5 to -172.5 deg. No pixel of their colour lies between: drawn from 172.5 across
     // the map to -172.5, they would cover the facets drawn before them at most longitudes
-    // of their bands. The column ends at +-172.5 deg; 2 deg (4 pixels) more allow for the
-    // outline's pixel.
+    // of their bands. The column ends at +-172.5 deg; 4 pixels more allow for the outline's
+    // pixel and the corners' rounding (a pixel spans 360 deg over the map's width at its
+    // row, which narrows towards the poles: 0.53 deg at the equator, 0.8 at 60 deg).
     let seam = P_STABLE_SCALE[0];
     let (l, r, t, b) = left;
-    let mut smeared = 0;
+    let mut smeared = Vec::new();
     for y in t as u32 + 2..b as u32 - 1 {
+        let row = 1.0 - 2.0 * (f64::from(y) - t) / (b - t);
+        let per_pixel = 360.0 / ((r - l) * (1.0 - row * row).sqrt());
         for x in l as u32 + 2..r as u32 - 1 {
-            let lon = -180.0 + 360.0 * (f64::from(x) - l) / (r - l);
-            if lon.abs() < 170.5 && img.get_pixel(x, y).0 == seam {
-                smeared += 1;
+            let lon = lon_at(left, x, y);
+            if lon.abs() < 172.5 - 4.0 * per_pixel && img.get_pixel(x, y).0 == seam {
+                smeared.push((x, y, lon));
             }
         }
     }
-    assert_eq!(smeared, 0, "pixels of the seam's facets inside the map");
+    assert!(
+        smeared.is_empty(),
+        "pixels of the seam's facets inside the map: {smeared:?}"
+    );
     // ...and both edges of the map show it.
     for lat in [22.0, 37.0, -37.0, -52.0] {
-        assert_eq!(at(&img, left, 177.0, lat), seam, "east edge at {lat}");
-        assert_eq!(at(&img, left, -177.0, lat), seam, "west edge at {lat}");
+        assert!(
+            of_colour(at(&img, left, 177.0, lat), seam),
+            "east edge at {lat}"
+        );
+        assert!(
+            of_colour(at(&img, left, -177.0, lat), seam),
+            "west edge at {lat}"
+        );
     }
 }
 
@@ -320,6 +362,105 @@ fn a_map_of_nothing_or_of_bad_triangles_is_refused_and_nan_is_drawn_grey() {
     nan.body.density_kg_m3 = f64::NAN;
     let (img, _, right) = drawn(&nan, &dir, "nan.png");
     assert_eq!(at(&img, right, 40.0, 37.0), NO_SHARES);
+}
+
+/// Issue 45: the slope's scale runs from 0 to 90 deg on every map, whatever the steepest
+/// facet (before: to the steepest rounded up, 0-150 deg here), so that maps compare; a
+/// steeper facet takes the scale's top colour.
+#[test]
+fn the_slope_scale_is_0_to_90_deg_for_every_body() {
+    let mut site = sphere(LONS, BANDS);
+    for f in &mut site.facets {
+        if f.latitude_deg > 75.0 {
+            // The effective gravity off the ground, as on a fast spinner.
+            f.slope_deg = 150.0;
+        }
+    }
+    let (img, _, right) = drawn(&site, &TempDir::new("site-slope-scale"), "slopes.png");
+    for (lon, lat, slope) in [
+        (40.0, 37.0, 37.5),
+        (-100.0, -52.0, 52.5),
+        (-100.0, 86.0, 90.0),
+    ] {
+        let got = at(&img, right, lon, lat);
+        let expect = scale_colour(&SLOPE_SCALE, slope / 90.0);
+        assert!(
+            of_colour(got, expect),
+            "{lon}, {lat}: {got:?} against {expect:?}"
+        );
+    }
+}
+
+/// The solid angle of the triangle `t` seen from the origin, sr (van Oosterom and
+/// Strackee 1983).
+fn solid_angle(t: [[f64; 3]; 3]) -> f64 {
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let [a, b, c] = t;
+    let n = |v: [f64; 3]| dot(v, v).sqrt();
+    let triple = dot(a, cross(b, c));
+    let below = n(a) * n(b) * n(c) + dot(a, b) * n(c) + dot(a, c) * n(b) + dot(b, c) * n(a);
+    2.0 * triple.abs().atan2(below)
+}
+
+/// Whether `pixel` is `colour`, or `colour` under the map's faint graticule (darkened).
+fn of_colour(pixel: [u8; 3], colour: [u8; 3]) -> bool {
+    let (p, c) = (pixel.map(f64::from), colour.map(f64::from));
+    let k = (p[0] * c[0] + p[1] * c[1] + p[2] * c[2]) / (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    (0.7..=1.0 + 1e-9).contains(&k) && (0..3).all(|i| (p[i] - k * c[i]).abs() <= 3.0)
+}
+
+/// Issue 45: a facet takes the share of the map that it takes of the directions from the
+/// body's centre (Mollweide's projection is equal-area, and the facet is drawn as its true
+/// outline, its straight edges curved on the map): a polar facet (pole to 60 deg, 60 deg
+/// wide) and one at the equator, each within the pixels along its border of its solid
+/// angle's share. The equirectangular map before drew the polar one at 2.9 times that.
+#[test]
+fn each_facet_takes_its_share_of_the_map_near_the_poles_too() {
+    let mut site = sphere(6, 6);
+    // Facet 0 is the fan's first at the north pole; the first facet of the third band
+    // (30 deg to the equator) follows the fan's 6 and the second band's 12: 18.
+    let (polar, equatorial) = (0, 18);
+    for (i, f) in site.facets.iter_mut().enumerate() {
+        f.shares = match i {
+            0 => Some([share(0.995), share(0.0), share(0.0), share(0.005)]),
+            18 => Some([share(0.5), share(0.5), share(0.0), share(0.0)]),
+            _ => None,
+        };
+    }
+    let (img, left, _) = drawn(&site, &TempDir::new("site-area"), "areas.png");
+    let (l, r, t, b) = left;
+    let mut inside = 0u64;
+    let mut counts = [0u64; 2];
+    let mut border = [0u64; 2];
+    let colours = [SAFE, p_stable_colour(Some(0.5))];
+    for y in t as u32 + 1..b as u32 {
+        for x in l as u32 + 1..r as u32 {
+            if lon_at(left, x, y).abs() >= 180.0 {
+                continue;
+            }
+            inside += 1;
+            for k in 0..2 {
+                if of_colour(img.get_pixel(x, y).0, colours[k]) {
+                    counts[k] += 1;
+                    let near = [(1, 0), (-1, 0), (0, 1), (0, -1)].iter().any(|(dx, dy)| {
+                        let p = img.get_pixel((x as i32 + dx) as u32, (y as i32 + dy) as u32);
+                        !of_colour(p.0, colours[k])
+                    });
+                    border[k] += u64::from(near);
+                }
+            }
+        }
+    }
+    for (k, facet) in [polar, equatorial].into_iter().enumerate() {
+        let tri = site.body.triangles[facet].map(|v| site.body.vertices[v as usize]);
+        let expected = solid_angle(tri) / (4.0 * std::f64::consts::PI) * inside as f64;
+        assert!(
+            (counts[k] as f64 - expected).abs() <= border[k] as f64,
+            "facet {facet}: {} pixels against {expected:.0} (border {})",
+            counts[k],
+            border[k]
+        );
+    }
 }
 
 /// The JSON of a page (the site as the page reads it).
@@ -388,9 +529,12 @@ fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
     let rough = column(&data, "roughness_deg");
     let shares = ["stable", "tipped", "sliding", "bouncing"].map(|k| column(&data, k));
     let (low, high) = (column(&data, "stable_low"), column(&data, "stable_high"));
+    let sites = column(&data, "safe");
     assert_eq!(ids.len(), site.facets.len());
     for (k, f) in site.facets.iter().enumerate() {
         assert_eq!(ids[k], f64::from(f.facet));
+        // A landing site as the map decides it, on the unrounded interval.
+        assert_eq!(sites[k], f64::from(u8::from(f.safe())), "facet {k}");
         assert_eq!(samples[k], f.samples as f64);
         assert!(rounded(lat[k], f.latitude_deg, 4) && rounded(lon[k], f.longitude_deg, 4));
         assert!(rounded(slope[k], f.slope_deg, 4) && rounded(g[k], f.gravity_m_s2, 4));
@@ -407,6 +551,10 @@ fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
     }
     let safe = data["body"]["safe_area_fraction"].as_f64().unwrap();
     assert!(rounded(safe, site.safe_area_fraction(), 6));
+    let point = data["body"]["safe_area_fraction_point_estimate"]
+        .as_f64()
+        .unwrap();
+    assert!(rounded(point, site.safe_area_fraction_point_estimate(), 6));
     // The scales are the map picture's.
     let scale = |name: &str| -> Vec<[u8; 3]> {
         let v = &data["scales"][name];
@@ -416,8 +564,8 @@ fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
     assert_eq!(scale("p_stable"), P_STABLE_SCALE.to_vec());
     assert_eq!(scale("slope"), SLOPE_SCALE.to_vec());
     assert_eq!(
-        (scale("safe"), scale("none")),
-        (vec![SAFE], vec![NO_SHARES])
+        (scale("safe"), scale("none"), scale("no_samples")),
+        (vec![SAFE], vec![NO_SHARES], vec![NO_SAMPLES])
     );
     // Nothing to show: refused, nothing written.
     let mut empty = site.clone();

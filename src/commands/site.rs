@@ -129,6 +129,11 @@ fn map_files(args: &SiteArgs) -> [PathBuf; 4] {
 
 /// Runs `touchdown site`.
 pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
+    // As a sweep refuses it; how many more a map needs is known once the body's slopes and
+    // gravities are (`crate::run::site`), before its sweep.
+    if args.samples == 0 {
+        anyhow::bail!("--samples must be at least 1: a map's facets count the sweep's samples");
+    }
     let window = Window {
         slope_deg: args.slope_window,
         gravity_fraction: args.gravity_window,
@@ -207,6 +212,9 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
             slope_range_deg: run.slope_range_deg,
             gravity_range_m_s2: run.gravity_range_m_s2,
             window,
+            tally: run.tally,
+            t_max_s: run.t_max_s,
+            warnings: run.warnings.clone(),
         },
     );
     crate::output::write_text(&md, &text)?;

@@ -13,16 +13,15 @@ use crate::output::format::Format;
 use crate::output::sweep::SweepFile;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
-use crate::shape::{FacetGravity, Polyhedron, read_shape, roughness_deg, unit_axis};
-use crate::site::estimate::{Counts, Window, grid_bytes};
-use crate::site::{Body, Site, SiteFacet};
+use crate::shape::{FacetGravity, Polyhedron, facet_gravity, read_shape, roughness_deg, unit_axis};
+use crate::site::estimate::{Counts, Window, expected_samples, grid_bytes};
+use crate::site::warnings::{BodyFigures, implausible_body, sweep_failures};
+use crate::site::{Body, SLOPE_LIMIT_DEG, STEEP_START_DEG, Site, SiteFacet, SweepTally};
 use crate::sweep::Shard;
 use anyhow::{Context as _, anyhow, bail};
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
-
-/// The steepest slope a site's sweep draws, deg: a lander cannot stand on 90 deg, and the
-/// scenario refuses it. Facets steeper than it get no shares.
-pub const SLOPE_LIMIT_DEG: f64 = 89.0;
+use std::time::Instant;
 
 /// The settings of a landing-site map (`touchdown site`'s flags).
 #[derive(Debug, Clone)]
@@ -73,10 +72,81 @@ pub struct SiteRun {
     pub gravity_range_m_s2: (f64, f64),
     /// What was done with the sweep.
     pub log: String,
+    /// What its samples did beyond the facets' shares.
+    pub tally: SweepTally,
+    /// `simulation.t_max_s` of its scenario, s.
+    pub t_max_s: f64,
+    /// The warnings on its samples (diverged, never touched), told on stderr too.
+    pub warnings: Vec<String>,
     /// Seconds to compute the facets' gravity.
     pub gravity_s: f64,
     /// The folder, locked until the map is written.
     pub lock: FolderLock,
+}
+
+/// Tells `text` on stderr as a warning (not `eprintln!`, which panics where stderr is gone).
+fn warn(text: &str) {
+    let _ = writeln!(std::io::stderr(), "touchdown: warning: {text}");
+}
+
+/// The units of the shape file, by name.
+fn units(args: &SiteSettings) -> &'static str {
+    if args.metres_per_unit == 1000.0 {
+        "km"
+    } else {
+        "m"
+    }
+}
+
+/// The body's figures the warnings judge.
+fn figures<'a>(args: &SiteSettings, volume_m3: f64) -> BodyFigures<'a> {
+    BodyFigures {
+        units: units(args),
+        metres_per_unit: args.metres_per_unit,
+        volume_m3,
+        density_kg_m3: args.density_kg_m3,
+    }
+}
+
+/// A gravity estimated to take longer than this, s, says so before it starts, on a
+/// terminal or not: "more than a few minutes".
+const GRAVITY_TOLD_S: f64 = 180.0;
+
+/// The estimate of the facets' gravity on `threads` threads, s, from the time of a few
+/// facets spread over the model (at most 16, for at most about 0.2 s), and how many.
+fn gravity_estimate(poly: &Polyhedron, axis: [f64; 3], omega: f64, threads: usize) -> (f64, usize) {
+    let n = poly.mesh().facet_geometry().len();
+    let tried = n.min(16);
+    let started = Instant::now();
+    let mut k = 0;
+    while k < tried && (k == 0 || started.elapsed().as_secs_f64() < 0.2) {
+        std::hint::black_box(facet_gravity(poly, k * n / tried, axis, omega));
+        k += 1;
+    }
+    let per_facet_s = started.elapsed().as_secs_f64() / k.max(1) as f64;
+    (per_facet_s * n as f64 / threads.max(1) as f64, k)
+}
+
+/// Says, before it starts, how long the facets' gravity will take where that is more than
+/// `GRAVITY_TOLD_S`: it costs the square of the facets, and a terminal's bar is all that
+/// would say so.
+fn tell_gravity_time(args: &SiteSettings, poly: &Polyhedron, axis: [f64; 3], omega: f64) {
+    let threads = rayon::current_num_threads();
+    let (estimate_s, measured) = gravity_estimate(poly, axis, omega, threads);
+    if estimate_s <= GRAVITY_TOLD_S {
+        return;
+    }
+    let n = poly.mesh().facet_geometry().len();
+    // The cost goes as the square of the facets.
+    let ten_minutes = (n as f64 * (600.0 / estimate_s).sqrt()).floor();
+    warn(&format!(
+        "{}: the gravity of its {n} facets will take about {} on {threads} thread{} \
+         (measured on {measured} of them; it grows as the square of the facets: a model of \
+         {ten_minutes} facets takes about 10 min); Ctrl-C stops it",
+        args.shape.display(),
+        super::eta::duration(estimate_s),
+        if threads == 1 { "" } else { "s" }
+    ));
 }
 
 /// How far from the origin, as a fraction of the body's size (its bounding box's diagonal),
@@ -120,8 +190,12 @@ fn body_of(
     let poly = Polyhedron::new(mesh, args.density_kg_m3)
         .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
     warn_off_centre(&args.shape, &poly);
+    if let Some(w) = implausible_body(&figures(args, poly.mesh().volume_m3())) {
+        warn(&format!("{}: {w}", args.shape.display()));
+    }
     let axis = unit_axis(args.spin_axis).map_err(|e| anyhow!("--spin-axis: {e}"))?;
     let omega = 2.0 * std::f64::consts::PI / (args.spin_period_h * 3600.0);
+    pool.install(|| tell_gravity_time(args, &poly, axis, omega));
     let bar = super::execute::progress_bar(
         poly.mesh().facet_geometry().len() as u64,
         !args.quiet,
@@ -281,7 +355,11 @@ fn sweep(
         options: &options,
     };
     let ran = |done: &super::execute::Executed| {
-        warn_untouched(done, scenario, "in the site's sweep, ");
+        // A map tells of its samples that never touched once counted, with their likely
+        // cause at the body's gravity (`sweep_failures`); a shard, as a sweep does.
+        if args.shard.is_some() {
+            warn_untouched(done, scenario, "in the site's sweep, ");
+        }
         format!(
             "{} samples in {:.1} s{}",
             done.computed,
@@ -300,18 +378,62 @@ fn sweep(
     })
 }
 
-/// The sweep's samples counted for the facets' windows.
+/// Counts what one batch of the sweep's samples did beyond their outcomes into `tally`.
+fn tally_batch(
+    b: &crate::output::sweep::SweepBatch<'_>,
+    outcomes: &[Outcome],
+    tally: &mut SweepTally,
+) -> anyhow::Result<()> {
+    let first_contact = b.f64s("first_contact_s")?;
+    let input = |name: &str| -> anyhow::Result<Option<&arrow_array::Float64Array>> {
+        if b.has(name) {
+            b.f64s(name).map(Some)
+        } else {
+            Ok(None)
+        }
+    };
+    let (release, rising) = (input("release_height_m")?, input("velocity_error_z_m_s")?);
+    let slope = b.f64s("slope_deg")?;
+    for (i, o) in outcomes.iter().enumerate() {
+        tally.samples += 1;
+        tally.diverged += u64::from(*o == Outcome::Diverged);
+        tally.held += u64::from(*o == Outcome::Held);
+        // A sample that diverged (at its first step, as often) is told of as that alone.
+        if arrow_array::Array::is_null(first_contact, i) && *o != Outcome::Diverged {
+            tally.untouched += 1;
+            if *o == Outcome::Tipped && slope.value(i) >= STEEP_START_DEG {
+                tally.untouched_steep += 1;
+                tally.untouched_steep_slope_deg = if tally.untouched_steep == 1 {
+                    slope.value(i)
+                } else {
+                    tally.untouched_steep_slope_deg.min(slope.value(i))
+                };
+                continue;
+            }
+            if let Some(r) = release {
+                tally.untouched_release_m = tally.untouched_release_m.max(r.value(i));
+            }
+            if let Some(v) = rising {
+                tally.untouched_rising_m_s = tally.untouched_rising_m_s.max(v.value(i));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The sweep's samples counted for the facets' windows, and what they did beyond.
 fn counts(
     file: &Path,
     slopes: (f64, f64),
     gravities: (f64, f64),
     window: Window,
-) -> anyhow::Result<Counts> {
+) -> anyhow::Result<(Counts, SweepTally)> {
     let mut f = SweepFile::open(file)?;
     let mut batches = f.batches();
     // One batch's samples at a time: the counts keep none of them.
     let mut batch = Vec::new().into_iter();
     let mut failed = None;
+    let mut tally = SweepTally::default();
     let samples = std::iter::from_fn(|| {
         loop {
             if let Some(sample) = batch.next() {
@@ -319,7 +441,9 @@ fn counts(
             }
             let read = batches.next()?.and_then(|b| {
                 let (slope, gravity) = (b.f64s("slope_deg")?, b.f64s("gravity_m_s2")?);
-                Ok(b.outcomes()?
+                let outcomes = b.outcomes()?;
+                tally_batch(&b, &outcomes, &mut tally)?;
+                Ok(outcomes
                     .into_iter()
                     .enumerate()
                     .map(|(i, o)| (slope.value(i), gravity.value(i), o))
@@ -337,8 +461,57 @@ fn counts(
     let counts = Counts::new(samples, slopes.1, gravities, window);
     match failed {
         Some(e) => Err(e),
-        None => Ok(counts),
+        None => Ok((counts, tally)),
     }
+}
+
+/// Samples the median facet's window must hold on average for a map to be made: with
+/// fewer, most facets would have none.
+const LEAST_MEDIAN_WINDOW_SAMPLES: f64 = 1.0;
+
+/// Refuses `--samples` too few for the map, before its sweep: the facets a lander can stand
+/// on (`gravity`) would mostly get no sample in their windows.
+fn check_samples(
+    args: &SiteSettings,
+    gravity: &[FacetGravity],
+    slopes: (f64, f64),
+    gravities: (f64, f64),
+) -> anyhow::Result<()> {
+    let mut expected: Vec<f64> = gravity
+        .iter()
+        .filter(|f| f.slope_deg < SLOPE_LIMIT_DEG)
+        .map(|f| {
+            expected_samples(
+                args.samples,
+                slopes.1,
+                gravities,
+                args.window,
+                (f.slope_deg, f.effective_magnitude_m_s2),
+            )
+        })
+        .collect();
+    expected.sort_by(f64::total_cmp);
+    let Some(&median) = expected.get(expected.len() / 2) else {
+        return Ok(());
+    };
+    if median >= LEAST_MEDIAN_WINDOW_SAMPLES {
+        return Ok(());
+    }
+    let needed = args.samples as f64 * LEAST_MEDIAN_WINDOW_SAMPLES / median;
+    bail!(
+        "--samples {}: too few for this map: the median facet's window (+-{} deg of slope, \
+         +-{} % of gravity) would hold {median:.3} samples on average, and most facets none; \
+         this body's map needs at least {} samples (one in the median window), and about 100 \
+         times that for shares known to +-0.1",
+        args.samples,
+        args.window.slope_deg,
+        100.0 * args.window.gravity_fraction,
+        if needed.is_finite() {
+            format!("{:.0}", needed.ceil())
+        } else {
+            "more".into()
+        }
+    )
 }
 
 /// The most memory, bytes, a map's grid takes where the machine does not say what it has
@@ -430,6 +603,7 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
     let gravity_s = started.elapsed().as_secs_f64();
     let (slopes, gravities) = ranges(&gravity, args.window)?;
     check_grid(args, slopes, gravities)?;
+    check_samples(args, &gravity, slopes, gravities)?;
     let (text, scenario) = sweep_text(args, &base_text, slopes, gravities)?;
     std::fs::create_dir_all(dir)
         .map_err(|e| anyhow!("cannot make the map's folder {}: {e}", dir.display()))?;
@@ -443,7 +617,24 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
             log,
         });
     }
-    let counts = counts(&sweep_file, slopes, gravities, args.window)?;
+    let (counts, tally) = counts(&sweep_file, slopes, gravities, args.window)?;
+    // The facets' gravities, without the windows' widening.
+    let g_range = (
+        gravities.0 / (1.0 - args.window.gravity_fraction),
+        gravities.1 / (1.0 + args.window.gravity_fraction),
+    );
+    let warnings = sweep_failures(
+        &tally,
+        &figures(args, body.volume_m3),
+        g_range,
+        (
+            scenario.simulation.t_max_s,
+            scenario.initial.start != crate::scenario::Start::Touchdown,
+        ),
+    );
+    for w in &warnings {
+        warn(&format!("in the map's sweep, {w}"));
+    }
     let facets = gravity
         .iter()
         .zip(&roughness)
@@ -479,6 +670,9 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
         slope_range_deg: slopes,
         gravity_range_m_s2: gravities,
         log,
+        tally,
+        t_max_s: scenario.simulation.t_max_s,
+        warnings,
         gravity_s,
         lock,
     })))

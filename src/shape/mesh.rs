@@ -2,11 +2,13 @@
 //! surface of non-degenerate triangles, with the geometry the gravity needs (per facet its
 //! centroid, outward normal and area; the body's volume, centre of mass and surface area).
 //!
-//! Not checked (each would cost more than the check itself, and none changes the gravity's
-//! formula): whether facets intersect each other, and whether the surface pinches at a
-//! vertex (two cones touching at their tips). An unused vertex is allowed.
+//! Facets that intersect each other are refused (intersect.rs: a bounding-volume hierarchy
+//! of the facets' boxes, exact tests of the pairs whose boxes overlap). Not checked: a
+//! surface that pinches at a vertex without passing through itself (two cones touching at
+//! their tips, sharing the vertex). An unused vertex is allowed.
 
 use super::error::ShapeError;
+use super::intersect::{Intersection, first_intersection};
 use super::vec3::{add, cross, dot, norm, scale, sub};
 
 /// A triangle mesh in metres, in the shape model's body-fixed frame. A facet lists its three
@@ -113,8 +115,10 @@ impl Mesh {
     /// coordinate that is not finite, a facet repeating a vertex or of area below
     /// [`DEGENERATE_AREA`] times the squared bounding-box diagonal, an edge used by one
     /// facet (not closed), by more than two (not manifold), or twice in the same direction
-    /// (not consistently oriented), and a surface that encloses a negative volume (inverted:
-    /// its facets face inwards) or none.
+    /// (not consistently oriented), a surface that encloses a negative volume (inverted:
+    /// its facets face inwards) or none, and two facets that intersect other than at the
+    /// vertex or edge they share (the first pair in file order; a mesh whose facets' boxes
+    /// overlap in too many pairs to check is refused too).
     pub fn check(self) -> Result<CheckedMesh, ShapeError> {
         let n = self.facets.len();
         if n < 4 {
@@ -127,6 +131,7 @@ impl Mesh {
         let geometry = self.geometry(size_m)?;
         let edges = self.edges()?;
         let (volume_m3, centre_of_mass_m) = self.volume(size_m)?;
+        self.intersections()?;
         let surface_area_m2 = geometry.iter().map(|g| g.area_m2).sum();
         Ok(CheckedMesh {
             mesh: self,
@@ -278,6 +283,31 @@ impl Mesh {
                     if k > 6 { ", ..." } else { "" }
                 ))
             }
+        }
+    }
+
+    /// Refuses facets that intersect each other, naming the first pair in file order.
+    fn intersections(&self) -> Result<(), ShapeError> {
+        match first_intersection(&self.vertices, &self.facets) {
+            Ok(()) => Ok(()),
+            Err(Intersection::Facets(f, g)) => {
+                let named = |f: usize| {
+                    let [a, b, c] = self.facets[f].map(|v| v + 1);
+                    format!("{} (vertices {a} {b} {c})", f + 1)
+                };
+                refuse(format!(
+                    "it intersects itself: facets {} and {} cross each other (two bodies \
+                     overlapping in one file, or a surface folded through itself)",
+                    named(f),
+                    named(g)
+                ))
+            }
+            Err(Intersection::TooManyPairs(pairs, allowed)) => refuse(format!(
+                "its facets' bounding boxes overlap in more than {allowed} pairs ({pairs} \
+                 counted, {} facets): too many to check whether facets intersect each other \
+                 (long thin facets fanned about one place?)",
+                self.facets.len()
+            )),
         }
     }
 

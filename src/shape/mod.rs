@@ -1,7 +1,7 @@
 //! The shape model of a small body and its gravity: a Wavefront OBJ file (obj.rs) or a
 //! vertex-facet plate file (plate.rs: PDS `.tab`, SBMT `.plt`) read into a mesh, the format
 //! chosen by the file's content (read.rs), the mesh checked to be a closed, consistently oriented, outward-facing surface
-//! with its geometry (mesh.rs), the constant-density polyhedron's gravity in closed form
+//! with its geometry (mesh.rs) and no facets that intersect each other (intersect.rs), the constant-density polyhedron's gravity in closed form
 //! (gravity.rs: Werner and Scheeres 1997), and per facet the spin's centrifugal
 //! acceleration, the effective gravity and the slope (facets.rs), and each facet's roughness
 //! against its neighbours (roughness.rs). docs/MODEL.md, "The shape model and its gravity".
@@ -19,6 +19,7 @@
 mod error;
 mod facets;
 mod gravity;
+mod intersect;
 mod mesh;
 mod obj;
 mod plate;
@@ -32,6 +33,7 @@ pub use facets::{
     spin_frame, unit_axis,
 };
 pub use gravity::{Field, G, Polyhedron};
+pub use intersect::{PAIRS_AT_LEAST, PAIRS_PER_FACET};
 pub use mesh::{CheckedMesh, DEGENERATE_AREA, Edge, FacetGeometry, MAX_FACETS, MAX_VERTICES, Mesh};
 pub use obj::{MAX_LINE_BYTES, parse_obj, read_obj};
 pub use plate::{parse_plate, read_plate};

@@ -78,6 +78,31 @@ pub fn grid_bytes(slope_max_deg: f64, gravities: (f64, f64), window: Window) -> 
     (columns + 1.0) * (rows + 1.0) * (SHARE_OUTCOMES.len() + 1) as f64 * 8.0
 }
 
+/// The samples a facet's window holds on average in a sweep of `samples` samples over these
+/// ranges (slopes drawn on `[0, slope_max_deg]`, gravities on `gravities`, uniformly): the
+/// sweep's samples times the share of its (slope, gravity) rectangle the window covers,
+/// clipped to the rectangle as the counts clip it.
+#[must_use]
+pub fn expected_samples(
+    samples: u64,
+    slope_max_deg: f64,
+    (gravity_min, gravity_max): (f64, f64),
+    window: Window,
+    (slope_deg, gravity): (f64, f64),
+) -> f64 {
+    let covered = |lo: f64, hi: f64, min: f64, max: f64| (hi.min(max) - lo.max(min)).max(0.0);
+    let s = covered(
+        slope_deg - window.slope_deg,
+        slope_deg + window.slope_deg,
+        0.0,
+        slope_max_deg,
+    ) / slope_max_deg;
+    let half = gravity * window.gravity_fraction;
+    let g = covered(gravity - half, gravity + half, gravity_min, gravity_max)
+        / (gravity_max - gravity_min);
+    samples as f64 * s * g
+}
+
 impl Counts {
     /// Counts `samples` (slope, deg; gravity, m/s^2; outcome) of a sweep that drew slopes on
     /// `[0, slope_max_deg]` and gravities on `[gravity_min, gravity_max]` uniformly, on a

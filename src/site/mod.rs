@@ -7,6 +7,7 @@
 pub mod estimate;
 pub mod summary;
 pub mod table;
+pub mod warnings;
 
 use crate::reference::Outcome;
 
@@ -18,8 +19,13 @@ pub const SHARE_OUTCOMES: [Outcome; 4] = [
     Outcome::Bouncing,
 ];
 
-/// The P(stable) a facet must reach to count as a landing site in `Site::safe_area_fraction`.
+/// The P(stable) a facet must reach to count as a landing site in `Site::safe_area_fraction`:
+/// the low end of its 95 % interval must reach it.
 pub const SAFE_P_STABLE: f64 = 0.99;
+
+/// The steepest slope a site's sweep draws, deg: a lander cannot stand on 90 deg, and the
+/// scenario refuses it. Facets steeper than it get no shares: "too steep".
+pub const SLOPE_LIMIT_DEG: f64 = 89.0;
 
 /// An outcome's share on a facet, with its 95 % interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,8 +70,9 @@ pub struct SiteFacet {
     pub roughness_deg: f64,
     /// The samples of the sweep that the facet's shares count.
     pub samples: u64,
-    /// The shares of `SHARE_OUTCOMES`; `None` where the facet's slope lies outside any
-    /// slope a lander can stand on (90 deg or more) or the sweep's range.
+    /// The shares of `SHARE_OUTCOMES`; `None` where the facet is too steep to stand on
+    /// (`SLOPE_LIMIT_DEG` or more, or outside the sweep's range) or its window holds no
+    /// sample (`samples` 0: "no samples").
     pub shares: Option<[FacetShare; 4]>,
 }
 
@@ -74,6 +81,26 @@ impl SiteFacet {
     #[must_use]
     pub fn p_stable(&self) -> Option<FacetShare> {
         self.shares.map(|s| s[0])
+    }
+
+    /// Whether a lander could stand on its slope (below `SLOPE_LIMIT_DEG`): a facet that
+    /// could, without shares, had no samples in its window.
+    #[must_use]
+    pub fn standing(&self) -> bool {
+        self.slope_deg < SLOPE_LIMIT_DEG
+    }
+
+    /// Whether it is a landing site: the low end of P(stable)'s 95 % interval (Wilson's)
+    /// reaches `SAFE_P_STABLE`.
+    #[must_use]
+    pub fn safe(&self) -> bool {
+        self.p_stable().is_some_and(|s| s.low >= SAFE_P_STABLE)
+    }
+
+    /// Whether its P(stable) itself (the point estimate) reaches `SAFE_P_STABLE`.
+    #[must_use]
+    pub fn safe_by_point_estimate(&self) -> bool {
+        self.p_stable().is_some_and(|s| s.p >= SAFE_P_STABLE)
     }
 }
 
@@ -114,18 +141,61 @@ pub struct Site {
 }
 
 impl Site {
-    /// The fraction of the surface (by area) where P(stable) is at least `SAFE_P_STABLE`
-    /// (facets without shares count as not safe).
+    /// The fraction of the surface (by area) of the landing sites: the facets whose
+    /// P(stable) is at least `SAFE_P_STABLE` with 95 % confidence, the low end of its Wilson
+    /// interval (`SiteFacet::safe`). Facets without shares count as not safe.
     #[must_use]
     pub fn safe_area_fraction(&self) -> f64 {
+        self.area_fraction(SiteFacet::safe)
+    }
+
+    /// [`Site::safe_area_fraction`] by the point estimate of P(stable) instead of its low
+    /// end: larger, by the facets whose samples are too few to be sure.
+    #[must_use]
+    pub fn safe_area_fraction_point_estimate(&self) -> f64 {
+        self.area_fraction(SiteFacet::safe_by_point_estimate)
+    }
+
+    /// The fraction of the surface (by area) of the facets that `keep`.
+    fn area_fraction(&self, keep: fn(&SiteFacet) -> bool) -> f64 {
         let total: f64 = self.facets.iter().map(|f| f.area_m2).sum();
-        let safe: f64 = self
+        let kept: f64 = self
             .facets
             .iter()
-            .filter(|f| f.p_stable().is_some_and(|s| s.p >= SAFE_P_STABLE))
+            .filter(|f| keep(f))
             .map(|f| f.area_m2)
             .sum();
         // `+ 0.0`: an empty sum is -0.0.
-        if total > 0.0 { safe / total + 0.0 } else { 0.0 }
+        if total > 0.0 { kept / total + 0.0 } else { 0.0 }
     }
 }
+
+/// What the samples of a map's sweep did beyond the facets' shares: those that diverged,
+/// were held by thrust, or never touched the ground (counted in the facets' samples, the
+/// first two in none of their shares, the last as bouncing or tipped).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SweepTally {
+    /// The samples of the sweep.
+    pub samples: u64,
+    /// Those that diverged (a non-finite or exploding state).
+    pub diverged: u64,
+    /// Those held on the ground by a control loop still running at the end.
+    pub held: u64,
+    /// Those that never touched the ground before `simulation.t_max_s` (and did not
+    /// diverge).
+    pub untouched: u64,
+    /// Those of them that turned over in flight on slopes of `STEEP_START_DEG` or more,
+    /// where a lander released upright already leans that far from the ground's normal.
+    pub untouched_steep: u64,
+    /// The least slope of those, deg.
+    pub untouched_steep_slope_deg: f64,
+    /// The largest release height of the others that never touched, m.
+    pub untouched_release_m: f64,
+    /// The largest upward velocity error of the others that never touched, m/s (0 if none
+    /// rose).
+    pub untouched_rising_m_s: f64,
+}
+
+/// The slope from which a lander that turned over before it touched is put down to the
+/// slope itself (it starts upright, leaning that far from the ground's normal), deg.
+pub const STEEP_START_DEG: f64 = 45.0;

@@ -2,7 +2,7 @@
 //! roughness) and how landings end over its surface, by area.
 
 use super::estimate::Window;
-use super::{SAFE_P_STABLE, SHARE_OUTCOMES, Site};
+use super::{SAFE_P_STABLE, SHARE_OUTCOMES, SLOPE_LIMIT_DEG, Site, SweepTally};
 use std::fmt::Write as _;
 
 /// What the summary says of the map's sweep.
@@ -17,6 +17,12 @@ pub struct Sweep<'a> {
     pub gravity_range_m_s2: (f64, f64),
     /// The window a facet's shares count samples in.
     pub window: Window,
+    /// What its samples did beyond the shares (diverged, held, never touched).
+    pub tally: SweepTally,
+    /// `simulation.t_max_s` of its scenario, s.
+    pub t_max_s: f64,
+    /// The warnings on its samples (`super::warnings::sweep_failures`), written as notes.
+    pub warnings: Vec<String>,
 }
 
 /// The area-weighted quantile `q` of `values` (value, area): the smallest value with at
@@ -121,20 +127,58 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
         sweep.window.slope_deg,
         100.0 * sweep.window.gravity_fraction
     );
-    // An area of none reads "0 m^2", not "0.0000e0 m^2".
-    let safe_m2 = site.safe_area_fraction() * area;
-    let safe_m2 = if safe_m2 == 0.0 {
-        "0".to_string()
-    } else {
-        format!("{safe_m2:.4e}")
-    };
+    let t = &sweep.tally;
+    let of = |k: u64| 100.0 * k as f64 / t.samples.max(1) as f64;
+    let _ = write!(
+        s,
+        "Of the sweep's {} samples, {} ({:.2} %) diverged and {} ({:.2} %) never touched the \
+         ground before simulation.t_max_s = {} s",
+        t.samples,
+        t.diverged,
+        of(t.diverged),
+        t.untouched,
+        of(t.untouched),
+        sweep.t_max_s
+    );
+    if t.held > 0 {
+        let _ = write!(s, "; {} ({:.2} %) were held by thrust", t.held, of(t.held));
+    }
     let _ = writeln!(
         s,
-        "**P(stable) >= {SAFE_P_STABLE} on {:.2} % of the surface** ({safe_m2} m^2).\n",
-        100.0 * site.safe_area_fraction(),
+        " (all counted in the facets' samples; the diverged and held in none of their shares, \
+         those that never touched as bouncing or tipped).\n"
+    );
+    for w in &sweep.warnings {
+        let _ = writeln!(s, "> **Warning**: {w}.\n");
+    }
+    // An area of none reads "0 m^2", not "0.0000e0 m^2".
+    let m2 = |fraction: f64| {
+        let m2 = fraction * area;
+        if m2 == 0.0 {
+            "0".to_string()
+        } else {
+            format!("{m2:.4e}")
+        }
+    };
+    let (sure, point) = (
+        site.safe_area_fraction(),
+        site.safe_area_fraction_point_estimate(),
+    );
+    let _ = writeln!(
+        s,
+        "**P(stable) >= {SAFE_P_STABLE} with 95 % confidence (the low end of its Wilson \
+         interval) on {:.2} % of the surface** ({} m^2); by the point estimate (its share of \
+         samples alone) on {:.2} % ({} m^2).\n",
+        100.0 * sure,
+        m2(sure),
+        100.0 * point,
+        m2(point),
     );
     let p = |x: &super::SiteFacet| x.p_stable().map(|s| s.p);
-    let _ = writeln!(s, "| P(stable) | share of the surface |\n|---|---|");
+    let _ = writeln!(
+        s,
+        "| P(stable), point estimate | share of the surface |\n|---|---|"
+    );
     for (label, keep) in [
         (
             "below 0.5",
@@ -152,37 +196,55 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
     ] {
         let _ = writeln!(s, "| {label} | {:.2} % |", share(&|x| keep(p(x))));
     }
-    // Past 90 deg the effective gravity points off the ground (a spin near its limit): no
-    // lander stays there, and the row says so apart from the merely steep (only when there
-    // is such a facet, so other maps keep their rows).
+    // Facets without shares, by why: too steep (past 90 deg the effective gravity points
+    // off the ground, a spin near its limit: a row of its own when there is such a facet),
+    // or no sample in the window (a window too fine or too few samples: what the map does
+    // not know, never counted as steep).
     let off = |x: &super::SiteFacet| x.slope_deg > 90.0;
     let _ = writeln!(
         s,
-        "| none (too steep to stand on) | {:.2} % |",
-        share(&|x| p(x).is_none() && !off(x))
+        "| none: too steep to stand on ({SLOPE_LIMIT_DEG} deg or more) | {:.2} % |",
+        share(&|x| p(x).is_none() && !x.standing() && !off(x))
     );
     if f.iter().any(off) {
         let _ = writeln!(
             s,
-            "| none (the effective gravity points off the ground: slope over 90 deg) | {:.2} % |",
+            "| none: the effective gravity points off the ground (slope over 90 deg) | {:.2} % |",
             share(&|x| p(x).is_none() && off(x))
         );
     }
+    let _ = writeln!(
+        s,
+        "| none: no samples in its window (more --samples, or wider windows) | {:.2} % |",
+        share(&|x| p(x).is_none() && x.standing())
+    );
     let with: Vec<&super::SiteFacet> = f.iter().filter(|x| x.shares.is_some()).collect();
     let with_area: f64 = with.iter().map(|x| x.area_m2).sum();
-    let _ = writeln!(s, "\n| outcome | mean share by area |\n|---|---|");
-    for (k, o) in SHARE_OUTCOMES.iter().enumerate() {
-        let m = with
-            .iter()
-            .map(|x| x.shares.map_or(0.0, |s| s[k].p) * x.area_m2)
-            .sum::<f64>()
-            / with_area;
-        let _ = writeln!(s, "| {} | {:.4} |", o.name(), m);
+    if with.is_empty() {
+        let _ = writeln!(s, "\nNo facet has shares: no mean share by area.");
+    } else {
+        let _ = writeln!(s, "\n| outcome | mean share by area |\n|---|---|");
+        for (k, o) in SHARE_OUTCOMES.iter().enumerate() {
+            let m = with
+                .iter()
+                .map(|x| x.shares.map_or(0.0, |s| s[k].p) * x.area_m2)
+                .sum::<f64>()
+                / with_area;
+            let _ = writeln!(s, "| {} | {:.4} |", o.name(), m);
+        }
     }
-    let mut n: Vec<u64> = with.iter().map(|x| x.samples).collect();
+    // Of the facets a lander could stand on: a facet without samples counts its 0.
+    let mut n: Vec<u64> = f
+        .iter()
+        .filter(|x| x.standing())
+        .map(|x| x.samples)
+        .collect();
     n.sort_unstable();
     if let (Some(lo), Some(mid)) = (n.first(), n.get(n.len() / 2)) {
-        let _ = writeln!(s, "\nSamples per facet: {lo} at least, {mid} median.");
+        let _ = writeln!(
+            s,
+            "\nSamples per facet a lander could stand on: {lo} at least, {mid} median."
+        );
     }
     s
 }

@@ -75,6 +75,10 @@ fn metadata(site: &Site, about: &About<'_>) -> HashMap<String, String> {
             "touchdown.site.safe_area_fraction",
             site.safe_area_fraction().to_string(),
         ),
+        (
+            "touchdown.site.safe_area_fraction_point_estimate",
+            site.safe_area_fraction_point_estimate().to_string(),
+        ),
         ("touchdown.site.sweep_file", about.sweep_file.to_string()),
         ("touchdown.samples", about.samples.to_string()),
         ("touchdown.scenario", about.sweep_text.to_string()),

@@ -10,8 +10,8 @@
 
 use super::text;
 use crate::output::{AtomicFile, cannot_write};
-use crate::plot::site::{NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, slope_top_deg};
-use crate::site::{SAFE_P_STABLE, Site, SiteFacet};
+use crate::plot::site::{NO_SAMPLES, NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, SLOPE_TOP_DEG};
+use crate::site::{SAFE_P_STABLE, SLOPE_LIMIT_DEG, Site, SiteFacet};
 use anyhow::bail;
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -66,6 +66,10 @@ fn site_json(site: &Site) -> String {
         ("volume_m3", b.volume_m3),
         ("area_m2", b.area_m2),
         ("safe_area_fraction", site.safe_area_fraction()),
+        (
+            "safe_area_fraction_point_estimate",
+            site.safe_area_fraction_point_estimate(),
+        ),
     ] {
         let _ = write!(o, ",\"{key}\":");
         num(&mut o, v, COORDINATE_DIGITS);
@@ -74,11 +78,15 @@ fn site_json(site: &Site) -> String {
     colours(&mut o, &P_STABLE_SCALE);
     o.push_str(",\"slope\":");
     colours(&mut o, &SLOPE_SCALE);
-    let ([r, g, bl], [r0, g0, b0]) = (SAFE, NO_SHARES);
-    let _ = write!(o, ",\"safe\":[{r},{g},{bl}],\"none\":[{r0},{g0},{b0}]");
+    let ([r, g, bl], [r0, g0, b0], [r1, g1, b1]) = (SAFE, NO_SHARES, NO_SAMPLES);
+    let _ = write!(
+        o,
+        ",\"safe\":[{r},{g},{bl}],\"none\":[{r0},{g0},{b0}],\"no_samples\":[{r1},{g1},{b1}]"
+    );
     let _ = write!(o, ",\"safe_p_stable\":{SAFE_P_STABLE}");
+    let _ = write!(o, ",\"slope_limit_deg\":{SLOPE_LIMIT_DEG}");
     o.push_str(",\"slope_top_deg\":");
-    num(&mut o, slope_top_deg(site), DIGITS);
+    num(&mut o, SLOPE_TOP_DEG, DIGITS);
     o.push_str("},\"vertices\":");
     list(
         &mut o,
@@ -116,6 +124,14 @@ fn facets(o: &mut String, facets: &[SiteFacet]) {
             o.push(',');
         }
         let _ = write!(o, "{}", f.samples);
+    }
+    // Whether each is a landing site, decided here on the unrounded interval.
+    o.push_str("],\"safe\":[");
+    for (k, f) in facets.iter().enumerate() {
+        if k > 0 {
+            o.push(',');
+        }
+        o.push(if f.safe() { '1' } else { '0' });
     }
     o.push(']');
     // The numbers, then the shares: P(stable) with its interval, the other outcomes' P.

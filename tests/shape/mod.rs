@@ -4,6 +4,7 @@
 //! and plate files refused.
 
 mod gravity;
+mod intersect;
 mod obj;
 mod plate;
 mod plate_refusals;
