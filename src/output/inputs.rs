@@ -57,7 +57,7 @@ pub fn refuse_input_as_output(out: &Path) -> anyhow::Result<()> {
         && let Some(input) = input_of(&m)
     {
         bail!(
-            "cannot write {}: {} and would be overwritten; choose another output path",
+            "cannot write {}: it is {} and would be overwritten; choose another output path",
             out.display(),
             same_as(out, &input)
         );
@@ -76,11 +76,7 @@ pub fn refuse_input_beside(out: &Path, beside: &Path, what: &str) -> anyhow::Res
             "cannot write {}: {}, the name of {what}, is {}; choose another output path",
             out.display(),
             beside.display(),
-            if same_name(&input, beside) {
-                "an input of this command".to_string()
-            } else {
-                format!("the input {} under another name (a link)", input.display())
-            }
+            same_as(beside, &input)
         );
     }
     Ok(())
@@ -105,31 +101,32 @@ pub fn refuse_stdout_as_output() -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The folder that holds `path` (`.` for a bare name).
+pub(super) fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(f) if !f.as_os_str().is_empty() => f,
+        _ => Path::new("."),
+    }
+}
+
 /// Whether paths `a` and `b` name the same entry of the same folder, however written
 /// (`m/x` and `/abs/m/x`; a link at the last step is not followed).
 fn same_name(a: &Path, b: &Path) -> bool {
     let entry = |p: &Path| {
-        let folder = match p.parent() {
-            Some(f) if !f.as_os_str().is_empty() => f,
-            _ => Path::new("."),
-        };
         Some((
-            std::fs::canonicalize(folder).ok()?,
+            std::fs::canonicalize(folder_of(p)).ok()?,
             p.file_name()?.to_owned(),
         ))
     };
     a == b || entry(a).is_some_and(|e| entry(b) == Some(e))
 }
 
-/// How `out` is the input `input`: the same path (however written), or the same file
+/// What `out` is of the input `input`: the same path (however written), or the same file
 /// under another name.
 fn same_as(out: &Path, input: &Path) -> String {
     if same_name(out, input) {
-        "it is an input of this command".to_string()
+        "an input of this command".to_string()
     } else {
-        format!(
-            "it is the input {} under another name (a link)",
-            input.display()
-        )
+        format!("the input {} under another name (a link)", input.display())
     }
 }

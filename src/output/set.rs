@@ -183,11 +183,7 @@ pub(super) fn written(partial: &Path) {
 /// `reserve` checks it (in a folder not made yet, no input can lie).
 pub fn check(paths: &[PathBuf]) -> anyhow::Result<()> {
     for path in paths {
-        let folder = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        if folder.is_dir() {
+        if super::inputs::folder_of(path).is_dir() {
             check_output_path(path)?;
         }
     }

@@ -96,8 +96,8 @@ pub(super) fn target_of(path: &Path) -> anyhow::Result<Target> {
 
 /// Refuses an output path whose folder is missing, that names a folder or that is one of
 /// the command's inputs (`inputs::declare`), or whose temporary name is one, before any
-/// work. `-` (standard output) and
-/// existing files of any kind other than folders are accepted.
+/// work. `-` (standard output) and existing files of any kind other than folders are
+/// accepted.
 pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
     if path.as_os_str() == "-" {
         return inputs::refuse_stdout_as_output();
@@ -111,10 +111,7 @@ pub fn check_output_path(path: &Path) -> anyhow::Result<()> {
     if std::fs::metadata(path).is_ok() {
         inputs::refuse_input_as_output(path)?;
     } else {
-        let parent = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
+        let parent = inputs::folder_of(path);
         if parent.exists() && !parent.is_dir() {
             anyhow::bail!(
                 "cannot write output file {}: {} is a file, not a folder",

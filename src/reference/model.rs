@@ -96,13 +96,11 @@ pub struct Model {
     /// The legs in the engine's order: counter-clockwise about Z_B by azimuth from -X_B
     /// (`engine_order`), the order in which the reference and the kernels visit them and
     /// sum their forces, so that a sample's numbers do not depend on the order in which a
-    /// scenario lists its legs. Outputs number legs as the user does (`leg_number`,
-    /// `by_number`; MODEL.md section 3).
+    /// scenario lists its legs. Outputs number legs as the user does (`leg_index`; MODEL.md
+    /// section 3).
     pub legs: Vec<Leg>,
-    /// The user's number of each leg of `legs`: its place in `lander.leg_tips_m`, or with
-    /// the layout keys its place counter-clockwise from `first_leg_azimuth_deg`.
-    pub leg_number: Vec<usize>,
-    /// The index in `legs` of the user's leg `k` (the inverse of `leg_number`).
+    /// The index in `legs` of the user's leg `k`: the `k`-th of `lander.leg_tips_m`, or
+    /// with the layout keys the `k`-th counter-clockwise from `first_leg_azimuth_deg`.
     pub leg_index: Vec<usize>,
     /// Edges of the support polygon, as pairs of indices into `legs`: the convex hull of the
     /// footpads seen along Z_B, counter-clockwise (`support_edges`). A footpad inside the
@@ -171,13 +169,13 @@ impl Model {
                 strut_axis: *u,
             })
             .collect();
-        // The engine's order, and the way back to the user's numbers (`Model::legs`).
-        let leg_number = engine_order(&legs);
+        // The engine's order (the user's numbers in it), and the way back (`Model::legs`).
+        let numbers = engine_order(&legs);
         let mut leg_index = vec![0; legs.len()];
-        for (i, &k) in leg_number.iter().enumerate() {
+        for (i, &k) in numbers.iter().enumerate() {
             leg_index[k] = i;
         }
-        let legs: Vec<Leg> = leg_number.iter().map(|&k| legs[k]).collect();
+        let legs: Vec<Leg> = numbers.iter().map(|&k| legs[k]).collect();
         let edges = support_edges(&legs);
         let d = &s.damper;
         let area_m2 = d.area_cm2 * 1e-4;
@@ -213,7 +211,6 @@ impl Model {
             mass_kg: s.lander.mass_kg,
             inertia_kg_m2: DVec3::from_array(s.lander.inertia_kg_m2),
             legs,
-            leg_number,
             leg_index,
             edges,
             contact: Contact {
@@ -405,13 +402,6 @@ impl Model {
             abundance: self.rock_abundance,
             pad_radius_m: self.pad_radius_m(),
         })
-    }
-
-    /// `per_leg` (one value for each of `legs`, in their order) in the user's numbering:
-    /// the `k`-th value is the user's leg `k`'s.
-    #[must_use]
-    pub fn by_number<T: Clone>(&self, per_leg: &[T]) -> Vec<T> {
-        self.leg_index.iter().map(|&i| per_leg[i].clone()).collect()
     }
 
     /// Largest distance of a footpad from the CG, m.

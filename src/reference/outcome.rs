@@ -161,7 +161,7 @@ pub struct Summary {
     /// Deepest penetration of a footpad below the local surface (0 if it never touched), m.
     pub max_penetration_m: f64,
     /// Per-leg results by the user's number: `legs[k]` is the user's leg `k`
-    /// (`Model::leg_number`).
+    /// (`Model::leg_index`).
     pub legs: Vec<LegSummary>,
     /// What the control loop did (scenarios with one; boxed, so that the rows of a passive
     /// sweep stay small: a window of them is in memory).

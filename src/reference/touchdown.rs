@@ -17,7 +17,7 @@ pub struct Met {
     /// `Z_B` in I.
     pub z_body: DVec3,
     /// The leg that touched first: the deepest on that step, by the user's number (the
-    /// lowest on a tie; `Model::leg_number`).
+    /// lowest on a tie; `Model::leg_index`).
     pub first_leg: usize,
 }
 

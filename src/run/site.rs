@@ -19,7 +19,6 @@ use crate::site::warnings::{BodyFigures, implausible_body, sweep_failures};
 use crate::site::{Body, SLOPE_LIMIT_DEG, STEEP_START_DEG, Site, SiteFacet, SweepTally};
 use crate::sweep::Shard;
 use anyhow::{Context as _, anyhow, bail};
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -84,9 +83,9 @@ pub struct SiteRun {
     pub lock: FolderLock,
 }
 
-/// Tells `text` on stderr as a warning (not `eprintln!`, which panics where stderr is gone).
+/// Tells `text` on stderr as a warning (`workers::tell`: never a panic where stderr is gone).
 fn warn(text: &str) {
-    let _ = writeln!(std::io::stderr(), "touchdown: warning: {text}");
+    super::workers::tell(&format!("touchdown: warning: {text}\n"));
 }
 
 /// The units of the shape file, by name.
@@ -163,8 +162,8 @@ fn warn_off_centre(shape: &Path, poly: &Polyhedron) {
     let c = c.map(|x| if x.abs() < 0.0005 { 0.0 } else { x });
     let size = poly.mesh().size_m();
     if off > OFF_CENTRE * size {
-        eprintln!(
-            "touchdown: warning: {}: its centre of mass at constant density lies {off:.3} m \
+        warn(&format!(
+            "{}: its centre of mass at constant density lies {off:.3} m \
              ({:.1} % of its size) from the origin, at ({:.3}, {:.3}, {:.3}) m; the spin turns \
              about the origin and the latitudes are taken from it (a shape model is given about \
              its centre of mass): recentre the model, unless its origin is a centre of mass \
@@ -174,7 +173,7 @@ fn warn_off_centre(shape: &Path, poly: &Polyhedron) {
             c[0],
             c[1],
             c[2]
-        );
+        ));
     }
 }
 

@@ -37,7 +37,7 @@ pub struct Sketch {
     pub bottom: Vec<DVec3>,
     /// The body's top octagon.
     pub top: Vec<DVec3>,
-    /// The legs, by the user's number (`Model::leg_number`).
+    /// The legs, by the user's number (`Model::leg_index`).
     pub legs: Vec<LegSketch>,
     /// Radius of the footpad discs, m.
     pub footpad_radius_m: f64,
