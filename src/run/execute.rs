@@ -2,10 +2,12 @@
 //! with their progress bar, and the file finished or left valid when a signal stops it.
 
 use super::plan::SweepPlan;
-use super::workers::{CHUNK, Interrupted, shown, tell};
-use crate::output::sweep::{SweepInfo, SweepWriter};
+use super::workers::{Interrupted, shown, tell};
+use crate::output::format::BATCH_ROWS;
+use crate::output::sweep::{Made, SweepInfo, SweepWriter};
 use crate::reference::{Model, Outcome};
 use crate::scenario::Scenario;
+use crate::sweep::Stretches;
 use std::ops::Range;
 
 /// How `execute` runs a plan: on which pool, stopped by which signal flag
@@ -94,45 +96,34 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     let bar = progress_bar(todo.end - todo.start, run.progress, "samples");
     let mut eta = super::eta::Eta::start(todo.end - todo.start, threads);
     let start = std::time::Instant::now();
-    let mut computed = 0u64;
-    let mut untouched = 0u64;
-    let mut untouched_tipped = 0u64;
-    let mut untouched_tipped_slope_deg = f64::INFINITY;
-    let mut untouched_descending = 0u64;
+    let mut tally = Tally::default();
+    let maker = writer.maker();
+    // Each stretch of rows becomes a batch of the file (and its tally) on the worker that
+    // finished it; this thread only appends the batches in order.
+    let make = |rows: Vec<crate::sweep::Row>| -> anyhow::Result<(Tally, Made)> {
+        Ok((Tally::of(&rows), maker.make(&rows)?))
+    };
+    let stretches = Stretches {
+        first: writer.room() as u64,
+        len: BATCH_ROWS as u64,
+    };
     let ran = run.pool.install(|| {
-        crate::sweep::run_until(
+        crate::sweep::pipeline(
             scenario,
             &model,
             plan.kernel.isa,
             todo.clone(),
-            CHUNK,
+            stretches,
             run.stop,
-            |rows| {
-                for r in &rows {
-                    counts[r.summary.outcome as usize] += 1;
-                    steps += r.summary.steps;
-                    let never = r.summary.first_contact_s.is_none();
-                    untouched += u64::from(never);
-                    if never && r.summary.outcome == Outcome::Tipped {
-                        untouched_tipped += 1;
-                        untouched_tipped_slope_deg =
-                            untouched_tipped_slope_deg.min(r.sample.inputs.slope_deg);
-                    }
-                    let descending = r
-                        .summary
-                        .control
-                        .as_ref()
-                        .is_some_and(|c| c.descent.is_some() && c.release_time_s.is_nan());
-                    untouched_descending +=
-                        u64::from(never && descending && r.summary.outcome != Outcome::Tipped);
-                }
-                computed += rows.len() as u64;
+            &make,
+            |(t, made)| {
+                tally.add(&t);
                 if let Some(counter) = run.counter {
-                    counter.store(computed, std::sync::atomic::Ordering::Relaxed);
+                    counter.store(tally.rows, std::sync::atomic::Ordering::Relaxed);
                 }
-                eta.done(computed);
-                bar.inc(rows.len() as u64);
-                writer.push(rows)
+                eta.done(tally.rows);
+                bar.inc(t.rows);
+                writer.push_made(made)
             },
         )
     })?;
@@ -143,19 +134,94 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     }
     // Finishing removes the interrupted run's file it continued (or made obsolete).
     let (rows, batches) = writer.finish_kept()?;
+    for (c, t) in counts.iter_mut().zip(tally.counts) {
+        *c += t;
+    }
     Ok(Executed {
         rows,
-        computed,
+        computed: tally.rows,
         wall_s: start.elapsed().as_secs_f64(),
         stats: ran.stats,
         counts,
-        steps,
-        untouched,
-        untouched_tipped,
-        untouched_tipped_slope_deg,
-        untouched_descending,
+        steps: steps + tally.steps,
+        untouched: tally.untouched,
+        untouched_tipped: tally.untouched_tipped,
+        untouched_tipped_slope_deg: tally.untouched_tipped_slope_deg,
+        untouched_descending: tally.untouched_descending,
         batches,
     })
+}
+
+/// What the summary counts of a stretch of rows.
+#[derive(Debug, Clone, Copy)]
+struct Tally {
+    rows: u64,
+    /// Rows per outcome, in the order of `Outcome::ALL`.
+    counts: [u64; Outcome::ALL.len()],
+    steps: u64,
+    /// Samples that never touched the surface; of those, the ones that tipped in flight
+    /// (and the gentlest slope among them, deg) and the ones still in their powered
+    /// descent at the end.
+    untouched: u64,
+    untouched_tipped: u64,
+    untouched_tipped_slope_deg: f64,
+    untouched_descending: u64,
+}
+
+impl Default for Tally {
+    fn default() -> Tally {
+        Tally {
+            rows: 0,
+            counts: [0; Outcome::ALL.len()],
+            steps: 0,
+            untouched: 0,
+            untouched_tipped: 0,
+            untouched_tipped_slope_deg: f64::INFINITY,
+            untouched_descending: 0,
+        }
+    }
+}
+
+impl Tally {
+    /// The tally of `rows`.
+    fn of(rows: &[crate::sweep::Row]) -> Tally {
+        let mut t = Tally::default();
+        for r in rows {
+            t.rows += 1;
+            t.counts[r.summary.outcome as usize] += 1;
+            t.steps += r.summary.steps;
+            let never = r.summary.first_contact_s.is_none();
+            t.untouched += u64::from(never);
+            if never && r.summary.outcome == Outcome::Tipped {
+                t.untouched_tipped += 1;
+                t.untouched_tipped_slope_deg =
+                    t.untouched_tipped_slope_deg.min(r.sample.inputs.slope_deg);
+            }
+            let descending = r
+                .summary
+                .control
+                .as_ref()
+                .is_some_and(|c| c.descent.is_some() && c.release_time_s.is_nan());
+            t.untouched_descending +=
+                u64::from(never && descending && r.summary.outcome != Outcome::Tipped);
+        }
+        t
+    }
+
+    /// Adds `o` to this tally.
+    fn add(&mut self, o: &Tally) {
+        self.rows += o.rows;
+        for (c, k) in self.counts.iter_mut().zip(o.counts) {
+            *c += k;
+        }
+        self.steps += o.steps;
+        self.untouched += o.untouched;
+        self.untouched_tipped += o.untouched_tipped;
+        self.untouched_tipped_slope_deg = self
+            .untouched_tipped_slope_deg
+            .min(o.untouched_tipped_slope_deg);
+        self.untouched_descending += o.untouched_descending;
+    }
 }
 
 /// The writer of `plan`'s file, its metadata saying what the sweep runs; keeping its

@@ -19,5 +19,5 @@ mod worker;
 
 pub use lanes::{kernel_params, lane_init, lane_thrust};
 pub use row::{LaneStats, Row};
-pub use run::{Ran, run, run_until};
+pub use run::{Ran, Stretches, pipeline, run, run_until};
 pub use shard::Shard;

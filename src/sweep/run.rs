@@ -1,5 +1,8 @@
-//! The sweep over a range: one worker per thread, a window of samples at a time, rows
-//! handed to the sink in sample order, and the unbroken run kept when stopped.
+//! The sweep over a range as a pipeline: one worker per thread steps its block and drops
+//! each finished sample's row into the stretch of consecutive samples it belongs to; the
+//! worker that finishes a stretch builds what the caller makes of its rows (a record batch,
+//! encoded); the calling thread only hands the built stretches on in sample order. No
+//! worker waits for the caller unless it has run a set distance ahead of it.
 
 use super::lanes::kernel_params;
 use super::row::{LaneStats, Row};
@@ -7,9 +10,11 @@ use super::worker::{Feed, Padded, Worker};
 use crate::reference::Model;
 use crate::scenario::Scenario;
 use kernels::isa::{Isa, Kernel, KernelKind, WithKernel};
-use rayon::prelude::*;
+use std::collections::BTreeMap;
 use std::ops::Range;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::mpsc;
+use std::sync::{Condvar, Mutex};
 
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -21,10 +26,54 @@ pub struct Ran {
     pub end: u64,
 }
 
-/// Runs `range` on the current rayon pool with the widest kernel this CPU has, in the
-/// scenario's precision (`simulation.precision`), one worker
-/// (one block) per thread, handing rows to `sink` a window of `4 * chunk` samples per
-/// thread at a time, in sample order. Stops early when `sink` returns an error.
+/// How a range is cut into stretches of consecutive samples: the first `first` samples,
+/// then `len` at a time (the last stretch ends with the range).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Stretches {
+    /// Samples of the first stretch (at least 1).
+    pub first: u64,
+    /// Samples of every later stretch (at least 1).
+    pub len: u64,
+}
+
+impl Stretches {
+    /// Stretches of `len` samples from the start.
+    #[must_use]
+    pub fn even(len: u64) -> Stretches {
+        Stretches {
+            first: len.max(1),
+            len: len.max(1),
+        }
+    }
+
+    /// The stretch of the sample `offset` samples into the range: its number and the
+    /// offset of its first sample.
+    fn of(&self, offset: u64) -> (u64, u64) {
+        if offset < self.first {
+            (0, 0)
+        } else {
+            let k = (offset - self.first) / self.len;
+            (k + 1, self.first + k * self.len)
+        }
+    }
+
+    /// The offset of the first sample of stretch `k`, and its length in a range of `n`
+    /// samples.
+    fn span(&self, k: u64, n: u64) -> (u64, u64) {
+        let start = if k == 0 {
+            0
+        } else {
+            self.first + (k - 1) * self.len
+        };
+        let len = if k == 0 { self.first } else { self.len };
+        (start.min(n), len.min(n.saturating_sub(start)))
+    }
+}
+
+/// Runs `range` on the current rayon pool's number of threads with the widest kernel this
+/// CPU has, in the scenario's precision (`simulation.precision`), handing rows to `sink` in
+/// sample order, `4 * chunk` samples per thread at a time. Stops early when `sink` returns
+/// an error.
 pub fn run(
     scenario: &Scenario,
     model: &Model,
@@ -40,11 +89,6 @@ pub fn run(
 /// then no lane takes another sample, the samples in the lanes finish, and the rows of the
 /// unbroken run of samples from the start of the range go to `sink` (a later sample whose
 /// predecessors did not all finish is dropped).
-///
-/// The workers take samples one at a time from a shared counter. Once the samples of a
-/// window run out, lanes go on to those of the next window while the last samples of this
-/// one finish; their rows are kept for the next window. Memory holds two windows of rows
-/// whatever the sample count.
 pub fn run_until(
     scenario: &Scenario,
     model: &Model,
@@ -54,108 +98,239 @@ pub fn run_until(
     stop: &AtomicUsize,
     sink: impl FnMut(Vec<Row>) -> anyhow::Result<()>,
 ) -> anyhow::Result<Ran> {
+    let window = chunk.max(1) * 4 * rayon::current_num_threads() as u64;
+    pipeline(
+        scenario,
+        model,
+        isa,
+        range,
+        Stretches::even(window),
+        stop,
+        &Ok,
+        sink,
+    )
+}
+
+/// The sweep of `range` as a pipeline, on as many worker threads as the current rayon
+/// pool has, with the kernel of `isa` (which this CPU must have), until `stop` becomes
+/// nonzero. The rows of each stretch of `stretches` go, in sample order, to `build`, on
+/// the worker that finished the stretch's last sample; what it builds goes to `sink`, on
+/// the calling thread, stretch by stretch in sample order. The workers take samples at
+/// most two stretches (and a little per thread) past the first stretch not yet sunk, so
+/// memory holds a few stretches whatever the sample count.
+///
+/// When stopped, the samples in the lanes finish and the unbroken run of rows from the
+/// start goes on (the last stretch cut short); an error of `build` or `sink` stops the
+/// workers at once and is returned.
+#[allow(clippy::too_many_arguments)]
+pub fn pipeline<T: Send>(
+    scenario: &Scenario,
+    model: &Model,
+    isa: Isa,
+    range: Range<u64>,
+    stretches: Stretches,
+    stop: &AtomicUsize,
+    build: &(dyn Fn(Vec<Row>) -> anyhow::Result<T> + Sync),
+    sink: impl FnMut(T) -> anyhow::Result<()>,
+) -> anyhow::Result<Ran> {
     KernelKind {
         isa,
         precision: scenario.simulation.precision,
     }
-    .dispatch(Sweep {
+    .dispatch(Pipeline {
         scenario,
         model,
         range,
-        chunk,
+        stretches,
         stop,
+        build,
         sink,
     })
 }
 
-/// The arguments of `run_until`, to run with the kernel `dispatch` picks.
-struct Sweep<'a, F> {
+/// The arguments of `pipeline`, to run with the kernel `dispatch` picks.
+struct Pipeline<'a, T, F> {
     scenario: &'a Scenario,
     model: &'a Model,
     range: Range<u64>,
-    chunk: u64,
+    stretches: Stretches,
     stop: &'a AtomicUsize,
+    build: &'a (dyn Fn(Vec<Row>) -> anyhow::Result<T> + Sync),
     sink: F,
 }
 
-impl<F: FnMut(Vec<Row>) -> anyhow::Result<()>> WithKernel for Sweep<'_, F> {
+/// What the workers share besides the feed: where rows go.
+struct Stretching<'a, T> {
+    range: Range<u64>,
+    stretches: Stretches,
+    build: &'a (dyn Fn(Vec<Row>) -> anyhow::Result<T> + Sync),
+    /// The rows of the stretches not yet complete, by stretch number.
+    open: Mutex<BTreeMap<u64, Vec<Row>>>,
+    /// Set on an error: the workers drop their lanes and return.
+    failed: &'a AtomicBool,
+}
+
+impl<T> Stretching<'_, T> {
+    /// Files `row` under its stretch; when that completes the stretch, builds it and sends
+    /// it on.
+    fn deliver(&self, row: Row, send: &mpsc::Sender<(u64, anyhow::Result<T>)>) {
+        let n = self.range.end - self.range.start;
+        let (k, start) = self.stretches.of(row.sample.index - self.range.start);
+        let len = self.stretches.span(k, n).1 as usize;
+        let complete = {
+            let mut open = self.open.lock().expect("no worker panics holding it");
+            let rows = open.entry(k).or_insert_with(|| Vec::with_capacity(len));
+            rows.push(row);
+            if rows.len() == len {
+                open.remove(&k)
+            } else {
+                None
+            }
+        };
+        if let Some(mut rows) = complete {
+            rows.sort_unstable_by_key(|r| r.sample.index);
+            debug_assert_eq!(rows[0].sample.index, self.range.start + start);
+            let built = (self.build)(rows);
+            if built.is_err() {
+                self.failed.store(true, Ordering::Relaxed);
+            }
+            // The receiver outlives every worker.
+            let _ = send.send((k, built));
+        }
+    }
+}
+
+impl<T: Send, F: FnMut(T) -> anyhow::Result<()>> WithKernel for Pipeline<'_, T, F> {
     type Output = anyhow::Result<Ran>;
 
     fn run<K: Kernel>(self) -> anyhow::Result<Ran> {
-        let Sweep {
+        let Pipeline {
             scenario,
             model,
             range,
-            chunk,
+            stretches,
             stop,
+            build,
             mut sink,
         } = self;
         // Read by every thread at every step: never in a pair of cache lines with the
         // counters the threads write (see `Padded`).
         let params = Padded(kernel_params::<K>(model));
         let params = &params.0;
-        let threads = rayon::current_num_threads();
-        let window = chunk.max(1) * 4 * threads as u64;
+        let threads = rayon::current_num_threads().max(1);
         let per_sample = scenario.sampled.iter().any(Option::is_some);
-        let mut workers: Vec<Worker<K>> = (0..threads)
-            .map(|_| Worker::new(params, per_sample))
-            .collect();
+        let n = range.end - range.start;
+        // How far past the first sample not yet sunk the workers may take samples: two of
+        // the longest stretches, and room for every lane of every thread besides.
+        let ahead = 2 * stretches.first.max(stretches.len) + 1024 * threads as u64;
+        let failed = AtomicBool::new(false);
+        let stretching = Stretching {
+            range: range.clone(),
+            stretches,
+            build,
+            open: Mutex::new(BTreeMap::new()),
+            failed: &failed,
+        };
         let next = Padded(AtomicU64::new(range.start));
-        let next = &next.0;
-        let mut carried: Vec<Row> = Vec::new();
+        let cap = Padded(AtomicU64::new(
+            range.start.saturating_add(ahead).min(range.end),
+        ));
+        let sunk_at = Mutex::new(0u64);
+        let moved = Condvar::new();
+        let feed = Feed {
+            stop,
+            failed: &failed,
+            next: &next.0,
+            cap: &cap.0,
+            end: range.end,
+            sunk: &sunk_at,
+            moved: &moved,
+        };
         let mut stats = LaneStats::default();
-        let mut start = range.start;
-        while start < range.end {
-            let end = start.saturating_add(window).min(range.end);
-            let done = carried.len() as u64;
-            let outstanding = Padded(AtomicU64::new(end - start - done));
-            let outstanding = &outstanding.0;
-            let feed = Feed {
-                stop,
-                next,
-                cap: end.saturating_add(window).min(range.end),
-                window_end: end,
-                outstanding,
-            };
-            let results: Vec<(Vec<Row>, LaneStats)> = if outstanding.load(Ordering::Relaxed) == 0 {
-                Vec::new()
-            } else {
-                workers
-                    .par_iter_mut()
-                    .map(|w| w.run(scenario, model, params, &feed))
-                    .collect()
-            };
-            let mut rows = std::mem::take(&mut carried);
-            for (r, s) in results {
-                stats = stats.add(s);
-                for row in r {
-                    if row.sample.index < end {
-                        rows.push(row);
-                    } else {
-                        carried.push(row);
+        let mut sunk = 0u64; // offset of the first sample not yet sunk
+        let mut expected = 0u64; // the stretch to sink next
+        let mut failure: Option<anyhow::Error> = None;
+        std::thread::scope(|scope| {
+            let (send, receive) = mpsc::channel();
+            let workers: Vec<_> = (0..threads)
+                .map(|_| {
+                    let (stretching, feed, send) = (&stretching, &feed, send.clone());
+                    scope.spawn(move || {
+                        Worker::<K>::new(params, per_sample).run(
+                            scenario,
+                            model,
+                            params,
+                            feed,
+                            |row| stretching.deliver(row, &send),
+                        )
+                    })
+                })
+                .collect();
+            drop(send);
+            // Built stretches in sample order, until every worker has returned.
+            let mut waiting = BTreeMap::new();
+            for (k, built) in receive {
+                if failure.is_some() {
+                    continue;
+                }
+                match built {
+                    Ok(t) => {
+                        waiting.insert(k, t);
+                    }
+                    Err(e) => failure = Some(e),
+                }
+                while failure.is_none()
+                    && let Some(t) = waiting.remove(&expected)
+                {
+                    match sink(t) {
+                        Ok(()) => {
+                            let (start, len) = stretches.span(expected, n);
+                            expected += 1;
+                            sunk = start + len;
+                            let mut at = sunk_at.lock().expect("no worker panics holding it");
+                            *at = sunk;
+                            let until = range.start.saturating_add(sunk + ahead);
+                            cap.0.store(until.min(range.end), Ordering::Relaxed);
+                            drop(at);
+                            moved.notify_all();
+                        }
+                        Err(e) => failure = Some(e),
                     }
                 }
+                if failure.is_some() {
+                    failed.store(true, Ordering::Relaxed);
+                    moved.notify_all();
+                }
             }
+            for w in workers {
+                stats = stats.add(w.join().expect("a sweep worker panicked"));
+            }
+        });
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        if sunk < n {
+            // Stopped: the unbroken run of the stretch the sink waits for, cut short.
+            let mut open = stretching
+                .open
+                .into_inner()
+                .expect("the workers have returned");
+            let mut rows = open.remove(&expected).unwrap_or_default();
             rows.sort_unstable_by_key(|r| r.sample.index);
-            if outstanding.load(Ordering::Relaxed) > 0 {
-                // Stopped: keep the unbroken run from `start`, the rows of the next window too.
-                rows.append(&mut carried);
-                rows.sort_unstable_by_key(|r| r.sample.index);
-                let unbroken = rows
-                    .iter()
-                    .zip(start..)
-                    .take_while(|(r, i)| r.sample.index == *i)
-                    .count();
-                rows.truncate(unbroken);
-                sink(rows)?;
-                return Ok(Ran {
-                    stats,
-                    end: start + unbroken as u64,
-                });
+            let from = range.start + sunk;
+            let unbroken = rows
+                .iter()
+                .zip(from..)
+                .take_while(|(r, i)| r.sample.index == *i)
+                .count();
+            rows.truncate(unbroken);
+            if unbroken > 0 {
+                sink(build(rows)?)?;
             }
-            debug_assert_eq!(rows.len() as u64, end - start);
-            sink(rows)?;
-            start = end;
+            return Ok(Ran {
+                stats,
+                end: from + unbroken as u64,
+            });
         }
         Ok(Ran {
             stats,

@@ -12,7 +12,8 @@ use kernels::block::Block;
 use kernels::isa::Kernel;
 use kernels::lane::{Lane, MAX_LANES};
 use kernels::params::Params;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::{Condvar, Mutex};
 
 /// A value alone in its pair of cache lines: x86 cores fetch lines in pairs of 128 bytes,
 /// so a line that one thread writes slows the threads that read the other line of its pair
@@ -38,35 +39,65 @@ pub(super) struct Worker<L: Lane> {
 }
 
 /// The most steps a worker asks of the kernel at once: the kernel returns sooner when a
-/// lane is decided. Between calls the worker sees whether the window is complete, so a
-/// worker steps at most this many steps past it (a few milliseconds).
+/// lane is decided. Between calls the worker takes new samples into its empty lanes and
+/// sees whether the run failed.
 const STEPS_PER_CALL: u32 = 256;
 
 /// Where a worker takes samples from, and when it may stop.
 pub(super) struct Feed<'a> {
     /// Nonzero: take no more samples (the lanes finish the samples they hold).
     pub(super) stop: &'a AtomicUsize,
+    /// Set: the run failed; the worker drops its lanes and returns.
+    pub(super) failed: &'a AtomicBool,
     /// The next sample index to take.
     pub(super) next: &'a AtomicU64,
-    /// Samples from `next` up to here may be taken.
-    pub(super) cap: u64,
-    /// The end of the window being completed.
-    pub(super) window_end: u64,
-    /// Samples below `window_end` not yet decided, in all workers.
-    pub(super) outstanding: &'a AtomicU64,
+    /// Samples from `next` up to here may be taken now (the run moves it on as the rows
+    /// before it are handed on).
+    pub(super) cap: &'a AtomicU64,
+    /// The end of the range.
+    pub(super) end: u64,
+    /// Guards the moves of `cap`, which `moved` announces.
+    pub(super) sunk: &'a Mutex<u64>,
+    pub(super) moved: &'a Condvar,
 }
 
 impl Feed<'_> {
-    /// The next sample index, if one below `cap` is left.
+    /// Whether the run failed.
+    fn failed(&self) -> bool {
+        self.failed.load(Ordering::Relaxed)
+    }
+
+    /// The next sample index, if one below `cap` is left and the run goes on.
     fn take(&self) -> Option<u64> {
-        if self.stop.load(Ordering::Relaxed) != 0 {
+        if self.stop.load(Ordering::Relaxed) != 0 || self.failed() {
             return None;
         }
+        let cap = self.cap.load(Ordering::Relaxed);
         self.next
             .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |n| {
-                (n < self.cap).then_some(n + 1)
+                (n < cap).then_some(n + 1)
             })
             .ok()
+    }
+
+    /// Whether no sample is left to take, ever.
+    fn exhausted(&self) -> bool {
+        self.stop.load(Ordering::Relaxed) != 0
+            || self.failed()
+            || self.next.load(Ordering::Relaxed) >= self.end
+    }
+
+    /// Waits until `cap` moves (or a while, for a stop signal, which cannot wake it).
+    fn wait(&self) {
+        let sunk = self.sunk.lock().expect("no thread panics holding it");
+        if self.exhausted() || self.next.load(Ordering::Relaxed) < self.cap.load(Ordering::Relaxed)
+        {
+            return;
+        }
+        let _ = self
+            .moved
+            .wait_timeout(sunk, std::time::Duration::from_millis(20))
+            .expect("no thread panics holding it");
     }
 }
 
@@ -80,27 +111,33 @@ impl<K: Kernel> Worker<K> {
         }
     }
 
-    /// Puts the next sample of `feed` into lane `i`, or empties the lane if none is left.
+    /// Puts the next sample of `feed` into lane `i`, or empties the lane if none is left
+    /// now.
     fn refill(&mut self, scenario: &Scenario, model: &Model, feed: &Feed, i: usize) {
         if let Some(index) = feed.take() {
-            let s = sampling::sample(scenario, index);
-            // The sample's own model, made once for its parameters and its initial state.
-            let own_model = model.for_sample(&s);
-            if let Some(own) = &mut self.own {
-                own.copy_lane(i, &kernel_params(&own_model));
-            }
-            self.block.load(i, &sample_lane_init(&own_model, &s));
-            self.samples[i] = Some(s);
-            if let Some(m) = &model.control {
-                let mut c = LaneControl::new(m, &s);
-                self.block.take_touched(i);
-                let truth = lane_truth(&self.block, i, false, false);
-                self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
-                self.control[i] = Some(c);
-            }
+            self.load(scenario, model, i, index);
         } else {
             self.block.retire(i);
             self.samples[i] = None;
+        }
+    }
+
+    /// Puts sample `index` into lane `i`.
+    fn load(&mut self, scenario: &Scenario, model: &Model, i: usize, index: u64) {
+        let s = sampling::sample(scenario, index);
+        // The sample's own model, made once for its parameters and its initial state.
+        let own_model = model.for_sample(&s);
+        if let Some(own) = &mut self.own {
+            own.copy_lane(i, &kernel_params(&own_model));
+        }
+        self.block.load(i, &sample_lane_init(&own_model, &s));
+        self.samples[i] = Some(s);
+        if let Some(m) = &model.control {
+            let mut c = LaneControl::new(m, &s);
+            self.block.take_touched(i);
+            let truth = lane_truth(&self.block, i, false, false);
+            self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
+            self.control[i] = Some(c);
         }
     }
 
@@ -169,28 +206,37 @@ impl<K: Kernel> Worker<K> {
         }
     }
 
-    /// Steps the block, refilling lanes from `feed`, until every sample below
-    /// `feed.window_end` is decided (in this worker or another), or until this block is
-    /// empty and nothing is left to take. Lanes may hold samples of the next window when it
-    /// returns; their rows come with a later call. Rows in no particular order.
+    /// Steps the block, refilling lanes from `feed`, handing each decided sample's row to
+    /// `deliver`, until nothing is left to take and the lanes are empty (or the run
+    /// failed). A worker whose lanes are all empty while the feed holds samples back waits
+    /// for it.
     pub(super) fn run(
         &mut self,
         scenario: &Scenario,
         model: &Model,
         params: &Params<K>,
         feed: &Feed,
-    ) -> (Vec<Row>, LaneStats) {
-        let mut rows = Vec::new();
+        mut deliver: impl FnMut(Row),
+    ) -> LaneStats {
         let mut stats = LaneStats::default();
-        for i in 0..K::LANES {
-            if self.samples[i].is_none() {
-                self.refill(scenario, model, feed, i);
+        loop {
+            if feed.failed() {
+                return stats;
             }
-        }
-        while feed.outstanding.load(Ordering::Relaxed) > 0 {
+            for i in 0..K::LANES {
+                if self.samples[i].is_none()
+                    && let Some(index) = feed.take()
+                {
+                    self.load(scenario, model, i, index);
+                }
+            }
             let busy = self.block.busy_lanes() as u64;
             if busy == 0 {
-                break;
+                if feed.exhausted() {
+                    return stats;
+                }
+                feed.wait();
+                continue;
             }
             // The lanes change only between calls (a decision stops the kernel), so `busy`
             // holds for every step of one.
@@ -208,16 +254,13 @@ impl<K: Kernel> Worker<K> {
                 for i in 0..K::LANES {
                     if decided & (1 << i) != 0 {
                         let sample = self.samples[i].expect("a decided lane holds a sample");
-                        if sample.index < feed.window_end {
-                            feed.outstanding.fetch_sub(1, Ordering::Relaxed);
-                        }
                         let soil = self.own.as_ref().unwrap_or(params).soil.as_ref();
                         let mut summary = lane_summary(model, soil, &self.block, i);
                         if let (Some(m), Some(c)) = (&model.control, &mut self.control[i]) {
                             let left = self.block.thrust.event_in_s.lane(i);
                             summary.control = Some(Box::new(c.finish(m, left)));
                         }
-                        rows.push(Row { sample, summary });
+                        deliver(Row { sample, summary });
                         self.refill(scenario, model, feed, i);
                     }
                 }
@@ -228,6 +271,5 @@ impl<K: Kernel> Worker<K> {
                 self.control_events(m, advanced.events);
             }
         }
-        (rows, stats)
     }
 }

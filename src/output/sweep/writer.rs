@@ -1,5 +1,6 @@
 //! The sweep file written as rows come, in batches of a fixed row count, under its name
-//! only when finished; and a rebatcher for files made of other files (merge, resume).
+//! only when finished; the batches made (and, for Parquet, encoded) on any thread by a
+//! `BatchMaker`; and a rebatcher for files made of other files (merge, resume).
 
 use super::batch::batch;
 use super::schema::{SweepInfo, schema};
@@ -10,13 +11,83 @@ use arrow_array::{Array, ArrayRef, Float64Array, RecordBatch, UInt32Array};
 use arrow_schema::SchemaRef;
 use arrow_select::concat::concat_batches;
 use parquet::arrow::ArrowWriter;
+use parquet::arrow::arrow_writer::{ArrowColumnChunk, ArrowRowGroupWriterFactory, compute_leaves};
+use parquet::file::writer::SerializedFileWriter;
 use std::path::Path;
 use std::sync::Arc;
 
-/// The writer of the file's format.
+/// The writer of the file's format. Parquet's row groups are encoded by the `BatchMaker`
+/// that made them (on the thread that made them), or here for batches written whole, as
+/// `ArrowWriter` encodes them: the same bytes.
 enum Writer {
     Arrow(IpcWriter),
-    Parquet(ArrowWriter<Out>),
+    Parquet {
+        file: SerializedFileWriter<Out>,
+        row_groups: Arc<ArrowRowGroupWriterFactory>,
+    },
+}
+
+/// Makes the record batch of a stretch of rows (and, for a Parquet file, encodes it as a
+/// row group): the work of the writer that any thread can do, for `SweepWriter::push_made`.
+#[derive(Clone)]
+pub struct BatchMaker {
+    schema: SchemaRef,
+    legs: usize,
+    table: Option<Arc<crate::scenario::InputTable>>,
+    row_groups: Option<Arc<ArrowRowGroupWriterFactory>>,
+}
+
+/// A batch made by a `BatchMaker`: its rows, and for Parquet their column chunks.
+pub struct Made {
+    batch: RecordBatch,
+    chunks: Option<Vec<ArrowColumnChunk>>,
+}
+
+impl Made {
+    /// The batch's rows.
+    #[must_use]
+    pub fn batch(&self) -> &RecordBatch {
+        &self.batch
+    }
+}
+
+impl BatchMaker {
+    /// The batch of `rows` (consecutive samples, in order).
+    pub fn make(&self, rows: &[Row]) -> anyhow::Result<Made> {
+        let kept = match (&self.table, rows.first()) {
+            (Some(t), Some(r)) => t.kept_rows(r.sample.index, rows.len())?,
+            _ => Vec::new(),
+        };
+        let batch = batch(&self.schema, self.legs, rows, kept)?;
+        let chunks = match &self.row_groups {
+            Some(f) => Some(row_group(f, &self.schema, &batch)?),
+            None => None,
+        };
+        Ok(Made { batch, chunks })
+    }
+}
+
+/// The column chunks of `b` as one Parquet row group, as `ArrowWriter` encodes them.
+fn row_group(
+    factory: &ArrowRowGroupWriterFactory,
+    schema: &SchemaRef,
+    b: &RecordBatch,
+) -> anyhow::Result<Vec<ArrowColumnChunk>> {
+    // The row group's number matters only to encryption, which these files do not use.
+    let mut writers = factory.create_column_writers(0)?;
+    let mut leaves = writers.iter_mut();
+    for (field, column) in schema.fields().iter().zip(b.columns()) {
+        for leaf in compute_leaves(field.as_ref(), column)? {
+            leaves
+                .next()
+                .expect("a writer for every leaf column")
+                .write(&leaf)?;
+        }
+    }
+    Ok(writers
+        .into_iter()
+        .map(|w| w.close())
+        .collect::<Result<_, _>>()?)
 }
 
 /// The file a sweep writer writes, under its name only when finished.
@@ -64,11 +135,13 @@ impl SweepWriter {
                     .set_max_row_group_row_count(Some(BATCH_ROWS))
                     .set_created_by(ENGINE.to_string())
                     .build();
-                Writer::Parquet(ArrowWriter::try_new(
-                    out,
-                    writer.schema.clone(),
-                    Some(props),
-                )?)
+                let (file, row_groups) =
+                    ArrowWriter::try_new(out, writer.schema.clone(), Some(props))?
+                        .into_serialized_writer()?;
+                Writer::Parquet {
+                    file,
+                    row_groups: Arc::new(row_groups),
+                }
             }
         };
         writer.out = Some(FileOut {
@@ -119,6 +192,45 @@ impl SweepWriter {
             }
         }
         Ok(())
+    }
+
+    /// What makes this writer's batches on other threads (`push_made`).
+    #[must_use]
+    pub fn maker(&self) -> BatchMaker {
+        BatchMaker {
+            schema: self.schema.clone(),
+            legs: self.legs,
+            table: self.table.clone(),
+            row_groups: match &self.out {
+                Some(FileOut {
+                    sink: Writer::Parquet { row_groups, .. },
+                    ..
+                }) => Some(row_groups.clone()),
+                _ => None,
+            },
+        }
+    }
+
+    /// The rows the next batch takes before it is full (fewer than `BATCH_ROWS` where it
+    /// begins with rows a resumed sweep took over).
+    #[must_use]
+    pub fn room(&self) -> usize {
+        self.room
+    }
+
+    /// Writes a batch its `maker` made of the next rows: the next batch's `room` rows, or
+    /// fewer as the last. Not to be mixed with `push`.
+    pub fn push_made(&mut self, made: Made) -> anyhow::Result<()> {
+        debug_assert!(self.pending.is_empty(), "push_made after push");
+        self.room = BATCH_ROWS;
+        match self.held.take() {
+            // The rows a resumed sweep took over come first: the batch is encoded here.
+            Some(h) => {
+                let whole = concat_batches(&self.schema, [&h, &made.batch])?;
+                self.write_batch(&zero_nulls(&whole)?)
+            }
+            None => self.write_made(made),
+        }
     }
 
     /// Takes `rows` (fewer than a batch, in this writer's schema) as the first rows of the
@@ -175,17 +287,49 @@ impl SweepWriter {
     /// be mixed with `push`.
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
         debug_assert!(self.pending.is_empty(), "write_batch after push");
+        let Some(row_groups) = self.maker().row_groups else {
+            return self.write_made(Made {
+                batch: b.clone(),
+                chunks: None,
+            });
+        };
+        // Parquet: in row groups of at most `BATCH_ROWS`, as `ArrowWriter` cuts a batch.
+        let mut at = 0;
+        loop {
+            let part = b.slice(at, (b.num_rows() - at).min(BATCH_ROWS));
+            at += part.num_rows();
+            let chunks = Some(row_group(&row_groups, &self.schema, &part)?);
+            self.write_made(Made {
+                batch: part,
+                chunks,
+            })?;
+            if at == b.num_rows() {
+                return Ok(());
+            }
+        }
+    }
+
+    /// Writes a made batch: an Arrow batch encoded here, or a Parquet row group of the
+    /// column chunks encoded where it was made.
+    fn write_made(&mut self, made: Made) -> anyhow::Result<()> {
+        let Made { batch: b, chunks } = made;
+        if b.num_rows() == 0 {
+            return Ok(());
+        }
         if let Some(out) = &mut self.out {
-            let written = match &mut out.sink {
-                Writer::Arrow(w) => w.write(b).map_err(anyhow::Error::from),
-                Writer::Parquet(w) => w.write(b).map_err(anyhow::Error::from),
+            let written = match (&mut out.sink, chunks) {
+                (Writer::Arrow(w), _) => w.write(&b).map_err(anyhow::Error::from),
+                (Writer::Parquet { file, .. }, Some(chunks)) => append_row_group(file, chunks),
+                (Writer::Parquet { .. }, None) => {
+                    anyhow::bail!("a Parquet batch made without its column chunks")
+                }
             };
             written.map_err(|e| crate::output::cannot_write(out.file.partial_path(), e))?;
         }
-        if let Some(kept) = &mut self.kept {
-            kept.push(b.clone());
-        }
         self.rows += b.num_rows() as u64;
+        if let Some(kept) = &mut self.kept {
+            kept.push(b);
+        }
         Ok(())
     }
 
@@ -229,7 +373,7 @@ impl SweepWriter {
         };
         let out = match sink {
             Writer::Arrow(w) => w.finish().map_err(anyhow::Error::from),
-            Writer::Parquet(w) => w.into_inner().map_err(anyhow::Error::from),
+            Writer::Parquet { file, .. } => file.into_inner().map_err(anyhow::Error::from),
         };
         let failed = |e| crate::output::cannot_write(file.partial_path(), e);
         let mut out = out.map_err(failed)?;
@@ -245,6 +389,19 @@ impl SweepWriter {
         };
         Ok((self.rows, made, kept))
     }
+}
+
+/// Appends `chunks` to `file` as its next row group.
+fn append_row_group(
+    file: &mut SerializedFileWriter<Out>,
+    chunks: Vec<ArrowColumnChunk>,
+) -> anyhow::Result<()> {
+    let mut group = file.next_row_group()?;
+    for chunk in chunks {
+        chunk.append_to_row_group(&mut group)?;
+    }
+    group.close()?;
+    Ok(())
 }
 
 /// Cuts a stream of batches into batches of `BATCH_ROWS` rows (the last one shorter), as
