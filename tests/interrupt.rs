@@ -9,6 +9,7 @@ use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
+use touchdown::output::format::BATCH_ROWS as BATCH;
 
 /// Flights cut at 5 s: about 60,000 samples/s on two cores, so that 300,000 samples run for
 /// seconds, long enough to be interrupted, and more than four record batches.
@@ -275,7 +276,7 @@ fn sigterm_twice_then_resume_gives_the_uninterrupted_shard() {
     );
     let second = check_interrupted(&dir, "r.parquet", run, 143, 300_000);
     assert!(
-        second >= first / 65_536 * 65_536,
+        second >= first / BATCH as u64 * BATCH as u64,
         "{second} rows after the second stop, {first} after the first"
     );
 

@@ -111,12 +111,14 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let wall = done.wall_s;
     let rows = done.rows;
     let mut t = format!(
-        "samples                 {rows}\nwall time               {wall:.2} s\nsamples/s               {:.0}\nlander-steps/s          {:.3e} ({:.3e} per thread)\nmean steps per sample   {:.0}\nlane occupancy          {:.3}\noutcomes\n",
+        "samples                 {rows}\nwall time               {wall:.2} s\nsamples/s               {:.0}\nlander-steps/s          {:.3e} ({:.3e} per thread)\nmean steps per sample   {:.0}\nlane occupancy          {:.3}\nserial share            {:.4} of the CPU time (so at most {:.1}x on 16 threads)\noutcomes\n",
         done.computed as f64 / wall,
         done.stats.busy_lane_steps as f64 / wall,
         done.stats.busy_lane_steps as f64 / wall / threads as f64,
         done.steps as f64 / rows as f64,
         done.stats.occupancy(),
+        done.serial_share,
+        1.0 / (done.serial_share + (1.0 - done.serial_share) / 16.0),
     );
     // `held` is listed where a lander can be held: with a control loop.
     let controlled = plan.scenario.control.is_some();

@@ -2,7 +2,7 @@
 //! reader of sweep files shares.
 
 /// Rows per record batch (and Parquet row group).
-pub const BATCH_ROWS: usize = 65_536;
+pub const BATCH_ROWS: usize = 8_192;
 
 /// File formats of a sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

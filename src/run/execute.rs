@@ -40,6 +40,9 @@ pub struct Executed {
     pub wall_s: f64,
     /// How busy the kernel's lanes were.
     pub stats: crate::sweep::LaneStats,
+    /// The share of the run's CPU time spent on the one thread that hands the batches to
+    /// the file (the run's serial part; `Ran::serial_share`).
+    pub serial_share: f64,
     /// Rows per outcome, in the order of `Outcome::ALL`.
     pub counts: [u64; Outcome::ALL.len()],
     /// Time steps summed over the rows in the file (kept and computed).
@@ -142,6 +145,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         computed: tally.rows,
         wall_s: start.elapsed().as_secs_f64(),
         stats: ran.stats,
+        serial_share: ran.serial_share(),
         counts,
         steps: steps + tally.steps,
         untouched: tally.untouched,

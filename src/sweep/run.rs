@@ -24,6 +24,37 @@ pub struct Ran {
     /// The first sample not handed to the sink: the end of the range, or where a stop left
     /// the rows (every sample before it was handed on, none after).
     pub end: u64,
+    /// CPU time of the whole process during the run, s.
+    pub cpu_s: f64,
+    /// CPU time of the calling thread during the run, s: it hands the built stretches to
+    /// the sink one after another (the run's serial part).
+    pub serial_cpu_s: f64,
+}
+
+impl Ran {
+    /// The serial part's share of the run's CPU time.
+    #[must_use]
+    pub fn serial_share(&self) -> f64 {
+        if self.cpu_s > 0.0 {
+            (self.serial_cpu_s / self.cpu_s).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// CPU time, s, of `clock` (`libc::CLOCK_PROCESS_CPUTIME_ID` or
+/// `libc::CLOCK_THREAD_CPUTIME_ID`); 0 where the system does not tell it.
+fn cpu_s(clock: libc::clockid_t) -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec for the call to write.
+    if unsafe { libc::clock_gettime(clock, &raw mut t) } != 0 {
+        return 0.0;
+    }
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
 }
 
 /// How a range is cut into stretches of consecutive samples: the first `first` samples,
@@ -116,8 +147,8 @@ pub fn run_until(
 /// nonzero. The rows of each stretch of `stretches` go, in sample order, to `build`, on
 /// the worker that finished the stretch's last sample; what it builds goes to `sink`, on
 /// the calling thread, stretch by stretch in sample order. The workers take samples at
-/// most two stretches (and a little per thread) past the first stretch not yet sunk, so
-/// memory holds a few stretches whatever the sample count.
+/// most a stretch and 2048 samples a thread past the first sample not yet sunk, so memory
+/// holds about two stretches whatever the sample count.
 ///
 /// When stopped, the samples in the lanes finish and the unbroken run of rows from the
 /// start goes on (the last stretch cut short); an error of `build` or `sink` stops the
@@ -220,9 +251,10 @@ impl<T: Send, F: FnMut(T) -> anyhow::Result<()>> WithKernel for Pipeline<'_, T, 
         let threads = rayon::current_num_threads().max(1);
         let per_sample = scenario.sampled.iter().any(Option::is_some);
         let n = range.end - range.start;
-        // How far past the first sample not yet sunk the workers may take samples: two of
-        // the longest stretches, and room for every lane of every thread besides.
-        let ahead = 2 * stretches.first.max(stretches.len) + 1024 * threads as u64;
+        // How far past the first sample not yet sunk the workers may take samples: the
+        // stretch being sunk and the next, and 2048 samples a thread besides, so that the
+        // workers go on while a stretch waits for its slowest sample or is being sunk.
+        let ahead = stretches.first.max(stretches.len) + 2048 * threads as u64;
         let failed = AtomicBool::new(false);
         let stretching = Stretching {
             range: range.clone(),
@@ -246,6 +278,10 @@ impl<T: Send, F: FnMut(T) -> anyhow::Result<()>> WithKernel for Pipeline<'_, T, 
             sunk: &sunk_at,
             moved: &moved,
         };
+        let (cpu_0, serial_0) = (
+            cpu_s(libc::CLOCK_PROCESS_CPUTIME_ID),
+            cpu_s(libc::CLOCK_THREAD_CPUTIME_ID),
+        );
         let mut stats = LaneStats::default();
         let mut sunk = 0u64; // offset of the first sample not yet sunk
         let mut expected = 0u64; // the stretch to sink next
@@ -330,11 +366,15 @@ impl<T: Send, F: FnMut(T) -> anyhow::Result<()>> WithKernel for Pipeline<'_, T, 
             return Ok(Ran {
                 stats,
                 end: from + unbroken as u64,
+                cpu_s: cpu_s(libc::CLOCK_PROCESS_CPUTIME_ID) - cpu_0,
+                serial_cpu_s: cpu_s(libc::CLOCK_THREAD_CPUTIME_ID) - serial_0,
             });
         }
         Ok(Ran {
             stats,
             end: range.end,
+            cpu_s: cpu_s(libc::CLOCK_PROCESS_CPUTIME_ID) - cpu_0,
+            serial_cpu_s: cpu_s(libc::CLOCK_THREAD_CPUTIME_ID) - serial_0,
         })
     }
 }
