@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::Path;
 
-/// Samples per task of the sweep's workers.
+/// Samples a thread of the rows `sweep::run_until` hands on at a time (four times this).
 pub const CHUNK: u64 = 1024;
 
 /// A sweep stopped by a signal; its rows so far are in a valid file beside the output.

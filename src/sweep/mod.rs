@@ -1,15 +1,17 @@
 //! Runs many samples through the SIMD kernels: blocks of lanes, lane refill, per-lane
 //! clocks, rayon over the cores, rows handed on in sample order.
 //!
-//! Every thread streams samples through one block: a lane whose sample is decided takes
-//! the next sample index at once, from a counter shared by the threads. Rows are passed on
-//! a window of consecutive indices at a time, in order, so memory holds about two windows
-//! of rows whatever the sample count; blocks keep their lanes from one window to the next,
-//! so the last (longest) samples of a window do not leave the block half empty.
+//! Every worker thread streams samples through one block: a lane whose sample is decided
+//! takes the next sample index at once, from a counter shared by the threads. A finished
+//! sample's row goes into its stretch of consecutive indices; the worker that completes a
+//! stretch builds it (for a sweep file, its record batch, encoded), and the calling thread
+//! hands the built stretches on in order: the only serial part. Workers take samples at
+//! most a stretch and a little past the first row not yet handed on, so memory holds about
+//! two stretches whatever the sample count; no worker waits for another's slow sample.
 //!
 //! The folder: `shard` (a slice of the sample range), `row` (what a run hands on), `lanes`
 //! (the kernels' parameters and a lane's state from the reference model, and back),
-//! `worker` (one block and its step loop), `run` (the workers over the windows).
+//! `worker` (one block and its step loop), `run` (the pipeline of workers and stretches).
 
 mod lanes;
 mod row;

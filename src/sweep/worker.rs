@@ -22,8 +22,8 @@ use std::sync::{Condvar, Mutex};
 #[repr(align(128))]
 pub(super) struct Padded<T>(pub(super) T);
 
-/// One block and the samples its lanes hold: a worker's state, kept from one window to the
-/// next so that a block never waits, half empty, for the last samples of a window. Aligned
+/// One block and the samples its lanes hold: a worker's state for the whole run, so that a
+/// block never waits, half empty, for the last samples of a stretch. Aligned
 /// to 128 bytes: the workers of two threads sit side by side, and x86 cores fetch cache
 /// lines in pairs (see `kernels::block::LegLanes`).
 #[repr(align(128))]
