@@ -73,7 +73,10 @@ fn check_file(file: &'static str) {
         std::os::unix::fs::symlink(root.join(link), dir.join(link)).expect("link a folder");
     }
     let path = readme_path(&dir);
-    let python = crate::common::python_readers_available("readme_blocks_run_as_printed");
+    // Asked only where a block runs Python: a file without such blocks runs without it.
+    let python = std::cell::OnceCell::new();
+    let python =
+        || *python.get_or_init(|| crate::common::python_readers_available("readme_blocks"));
     let only = std::env::var(ONLY).ok();
     let mut report = String::new();
     for block in blocks.iter().filter(|b| b.is_command()) {
@@ -93,7 +96,7 @@ fn check_file(file: &'static str) {
             How::NotRun(why) => {
                 let _ = writeln!(report, "{}: not run: {why}", block.place());
             }
-            How::Run { .. } if !python && uses_python(block) => {
+            How::Run { .. } if uses_python(block) && !python() => {
                 let _ = writeln!(report, "{}: not run: no Python environment", block.place());
             }
             How::Run(_)
