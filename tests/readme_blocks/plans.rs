@@ -123,7 +123,12 @@ pub(super) const PLANS: &[Plan] = &[
     Plan {
         file: README,
         key: "cat > soil.toml",
-        how: run(&[]),
+        how: run(&[figure(
+            "the stable share on the drawn ground",
+            "Of the 200,000 landers {} % stand",
+            "outcomes stable {_} {} %",
+            Agree::Share(1.0),
+        )]),
     },
     Plan {
         file: README,
