@@ -121,6 +121,25 @@ impl std::fmt::Display for Run {
     }
 }
 
+/// A `PATH` for shell lines as the README prints them: `touchdown` is this build and
+/// `python3` the tests' Python environment, both in `DIR/bin`, ahead of the caller's `PATH`.
+pub(crate) fn readme_path(dir: &TempDir) -> String {
+    let bin = dir.join("bin");
+    std::fs::create_dir_all(&bin).expect("make the folder of the README's commands");
+    // A script, not a link: a virtual environment's interpreter knows it by its own path.
+    let script = bin.join("python3");
+    std::fs::write(&script, format!("#!/bin/sh\nexec '{}' \"$@\"\n", python()))
+        .expect("write the python3 script");
+    std::fs::set_permissions(&script, std::os::unix::fs::PermissionsExt::from_mode(0o755))
+        .expect("make the python3 script executable");
+    std::os::unix::fs::symlink(BIN, bin.join("touchdown")).expect("link the touchdown binary");
+    format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    )
+}
+
 /// Runs `touchdown ARGS` in `dir`, without a backtrace setting from the caller's
 /// environment (so that a panic shows its usual `RUST_BACKTRACE` note).
 pub(crate) fn touchdown(dir: &Path, args: &[&str]) -> Run {

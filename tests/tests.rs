@@ -31,6 +31,7 @@ mod parameters;
 mod plot;
 mod python_example;
 mod python_package;
+mod readme_blocks;
 mod release_state;
 mod report;
 mod report_json;

@@ -29,17 +29,7 @@ fn the_readme_python_lines_make_tables_that_replay() {
     let dir = TempDir::new("inputs-readme");
     // `python3` and `touchdown` as the README's lines call them: the tests' environment
     // and this build.
-    let bin = dir.join("bin");
-    std::fs::create_dir(&bin).unwrap();
-    // A script, not a link: a virtual environment's interpreter knows it by its own path.
-    let script = bin.join("python3");
-    std::fs::write(
-        &script,
-        format!("#!/bin/sh\nexec '{}' \"$@\"\n", crate::common::python()),
-    )
-    .unwrap();
-    std::fs::set_permissions(&script, std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
-    std::os::unix::fs::symlink(crate::common::BIN, bin.join("touchdown")).unwrap();
+    let path = crate::common::readme_path(&dir);
     let run = touchdown(
         dir.path(),
         &[
@@ -56,11 +46,6 @@ fn the_readme_python_lines_make_tables_that_replay() {
     // landers tip again, exactly.
     dir.write("changed.toml", "# the default scenario\n");
     let block = readme_block("### Your own inputs");
-    let path = format!(
-        "{}:{}",
-        bin.display(),
-        std::env::var("PATH").unwrap_or_default()
-    );
     let o = std::process::Command::new("sh")
         .args(["-e", "-c", &block])
         .current_dir(dir.path())
