@@ -39,7 +39,8 @@
 # normal, exponential, a CSV of bins); five refusals (exit 2 and their message).
 #
 # Masked before comparing, and why (all else is compared as written):
-#   sweep's stdout  "wall time", "samples/s", "lander-steps/s": wall-clock measures. And,
+#   sweep's stdout  "wall time", "samples/s", "lander-steps/s": wall-clock measures;
+#                   "serial share": a ratio of CPU times, which vary as they do. And,
 #                   with 2 threads, "lane occupancy": which samples share a SIMD block
 #                   depends on how the threads steal work, so it varies from run to run
 #                   of one binary (0.924/0.931/0.934 in three runs of the default); with
@@ -165,11 +166,13 @@ mask() {
             -e 's/^(wall time +)[0-9.]+ s$/\1<masked> s/' \
             -e 's/^(samples\/s +)[0-9.]+$/\1<masked>/' \
             -e 's/^(lander-steps\/s +).*$/\1<masked>/' \
+            -e 's/^(serial share +).*$/\1<masked>/' \
             -e 's/^(lane occupancy +)[0-9.]+$/\1<masked>/' ;;
         sweep1) sed -E \
             -e 's/^(wall time +)[0-9.]+ s$/\1<masked> s/' \
             -e 's/^(samples\/s +)[0-9.]+$/\1<masked>/' \
-            -e 's/^(lander-steps\/s +).*$/\1<masked>/' ;;
+            -e 's/^(lander-steps\/s +).*$/\1<masked>/' \
+            -e 's/^(serial share +).*$/\1<masked>/' ;;
         study) sed -E \
             -e 's/( samples in )[0-9.]+ s,/\1<masked> s,/' \
             -e 's/^(shard .* done in )[0-9.]+ s;/\1<masked> s;/' ;;
