@@ -176,7 +176,12 @@ impl PyLaw {
             m.copy_from_slice(row);
         }
         if out.is_none() {
-            return Ok(());
+            // Most likely a `return` forgotten: refused rather than taken as nothing.
+            return Err(PyTypeError::new_err(format!(
+                "control law {:?}: command(sensed, memory) returned None; return a \
+                 touchdown.Command (its fields left None command nothing)",
+                self.name
+            )));
         }
         let force = self.rows(py, &out, "force_b_n", n)?;
         let torque = self.rows(py, &out, "torque_b_n_m", n)?;

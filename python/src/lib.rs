@@ -4,6 +4,7 @@
 //! plan run on worker threads with its batches kept, a trace is `run::trace::trace_scenario`
 //! kept in memory, a report is `report::report`'s. Errors keep the command line's messages.
 
+mod counts;
 mod errors;
 mod law;
 mod report;

@@ -6,7 +6,8 @@ use pyo3::exceptions::{PyKeyError, PyOSError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::path::PathBuf;
-use touchdown::scenario::{DEFAULT_TOML, keys};
+use std::sync::LazyLock;
+use touchdown::scenario::{DEFAULT_TOML, LIMIT_NAMES, keys};
 
 /// A scenario: what a sweep or a trace runs, as a scenario file gives it.
 ///
@@ -37,6 +38,47 @@ impl Scenario {
         self.table = table;
         self.text = text;
         Ok(())
+    }
+
+    /// What holds for `key`, which the scenario does not give: the default scenario's
+    /// value, nothing (a limit left out), or the reader's message for a key it does not
+    /// know.
+    fn not_given(&self, key: &str) -> String {
+        static DEFAULTS: LazyLock<toml::Table> =
+            LazyLock::new(|| DEFAULT_TOML.parse().expect("the default scenario is TOML"));
+        if let Some(value) = keys::get(&DEFAULTS, key) {
+            return format!(
+                "the scenario does not give `{key}`: its default holds, {key} = {value} \
+                 (set it to change it)"
+            );
+        }
+        // Whether the reader knows the key: set to a value no key takes, a known key is
+        // refused for its value, an unknown one for its name.
+        let mut probe = self.table.clone();
+        let never = toml::Value::Datetime("1970-01-01".parse().expect("a TOML date"));
+        if keys::set(&mut probe, key, never).is_err() {
+            return format!("`{key}` is not a key of the scenario");
+        }
+        let text = toml::to_string(&probe).unwrap_or_default();
+        if let Err(e @ touchdown::scenario::ScenarioError::UnknownKey { .. }) =
+            touchdown::run::scenario_from_toml(&text)
+        {
+            return e.to_string();
+        }
+        if LIMIT_NAMES
+            .iter()
+            .any(|(_, name)| key.strip_prefix("limits.") == Some(name))
+        {
+            return format!(
+                "the scenario does not give `{key}`, which has no default: no such limit \
+                 applies (set it to apply one)"
+            );
+        }
+        format!(
+            "the scenario does not give `{key}`, and the default scenario has no value for \
+             it: where its table is given, the reader's default holds (`touchdown scenario` \
+             describes each key)"
+        )
     }
 
     /// The scenario of `text`, checked.
@@ -81,13 +123,11 @@ impl Scenario {
 
     /// The value of a key by its dotted name: a number, string or bool, a dict (a table
     /// or a distribution) or a list (`[[thrusters]]`). `KeyError` where the scenario does
-    /// not give the key (its default holds then).
+    /// not give the key, saying what holds instead (the default, or nothing), or that the
+    /// scenario has no such key.
     fn __getitem__<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
-        let value = keys::get(&self.table, key).ok_or_else(|| {
-            PyKeyError::new_err(format!(
-                "the scenario does not give `{key}` (its default holds; set it to change it)"
-            ))
-        })?;
+        let value =
+            keys::get(&self.table, key).ok_or_else(|| PyKeyError::new_err(self.not_given(key)))?;
         to_python(py, value)
     }
 
@@ -110,9 +150,7 @@ impl Scenario {
                 .remove(leaf)
                 .is_some();
         if !removed {
-            return Err(PyKeyError::new_err(format!(
-                "the scenario does not give `{key}`"
-            )));
+            return Err(PyKeyError::new_err(self.not_given(key)));
         }
         self.replace(table)
     }

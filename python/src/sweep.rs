@@ -2,6 +2,7 @@
 //! its batches kept, while Python waits in short slices (a progress bar moves, Ctrl-C is
 //! heard), then handed to pyarrow through the Arrow C stream interface.
 
+use crate::counts::{self, whole};
 use crate::errors::{OrPy, TouchdownError, to_py};
 use arrow_array::{RecordBatch, RecordBatchIterator, RecordBatchReader};
 use arrow_pyarrow::IntoPyArrow;
@@ -50,9 +51,9 @@ impl SweepRun {
     #[allow(clippy::too_many_arguments)]
     fn new(
         scenario_toml: String,
-        samples: Option<u64>,
-        seed: Option<u64>,
-        threads: Option<usize>,
+        samples: Option<Bound<'_, PyAny>>,
+        seed: Option<Bound<'_, PyAny>>,
+        threads: Option<Bound<'_, PyAny>>,
         design: Option<&str>,
         inputs: Option<PathBuf>,
         keep_columns: bool,
@@ -61,6 +62,10 @@ impl SweepRun {
         kernel: Option<&str>,
         keep: bool,
     ) -> PyResult<SweepRun> {
+        let samples = whole("samples", samples.as_ref(), counts::POSITIVE)?;
+        let seed = whole("seed", seed.as_ref(), counts::INDEX)?;
+        let threads = whole("threads", threads.as_ref(), counts::THREADS)?
+            .map(|n| usize::try_from(n).expect("at most MAX_THREADS"));
         if !keep && out.is_none() {
             return Err(pyo3::exceptions::PyValueError::new_err(
                 "table=False keeps no rows: give out= the file to write them to",

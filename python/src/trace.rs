@@ -1,6 +1,7 @@
 //! `touchdown.trace`: one sample run with the reference model, its time history kept in
 //! memory and handed to pyarrow, with what the command line prints of it.
 
+use crate::counts::{self, whole};
 use crate::errors::OrPy;
 use arrow_pyarrow::IntoPyArrow;
 use pyo3::prelude::*;
@@ -14,23 +15,21 @@ use touchdown::scenario::DEFAULT_TOML;
 /// memory), one row every `every` steps. Returns what `touchdown trace` prints and the
 /// time history as a `pyarrow.RecordBatchReader`.
 #[pyfunction]
-#[pyo3(signature = (sample, every=1, scenario_toml=None, seed=None, sweep=None, metadata=None, inputs=None))]
+#[pyo3(signature = (sample, every=None, scenario_toml=None, seed=None, sweep=None, metadata=None, inputs=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn trace<'py>(
     py: Python<'py>,
-    sample: u64,
-    every: u64,
+    sample: Bound<'py, PyAny>,
+    every: Option<Bound<'py, PyAny>>,
     scenario_toml: Option<String>,
-    seed: Option<u64>,
+    seed: Option<Bound<'py, PyAny>>,
     sweep: Option<PathBuf>,
     metadata: Option<HashMap<String, String>>,
     inputs: Option<PathBuf>,
 ) -> PyResult<(String, Bound<'py, PyAny>)> {
-    if every == 0 {
-        return Err(pyo3::exceptions::PyValueError::new_err(
-            "every must be at least 1",
-        ));
-    }
+    let sample = whole("sample", Some(&sample), counts::INDEX)?.unwrap_or_default();
+    let every = whole("every", every.as_ref(), counts::POSITIVE)?.unwrap_or(1);
+    let seed = whole("seed", seed.as_ref(), counts::INDEX)?;
     crate::law::clear();
     let settings = TraceSettings {
         sweep,

@@ -62,7 +62,12 @@ class Raises:
     def command(self, sensed, memory):
         if (sensed.t_s > 1.0).any():
             raise RuntimeError("the law broke")
-        return None
+        return touchdown.Command()
+
+
+class ReturnsNone:
+    def command(self, sensed, memory):
+        memory[:, 0] = sensed.t_s
 
 
 class BadShape:
@@ -89,6 +94,18 @@ def test_a_command_of_the_wrong_shape_is_refused(root_dir):
     s["control.law"] = "bad_shape"
     with pytest.raises(ValueError, match=r'control law "bad_shape": force_b_n has shape \(\d+, 2\)'):
         touchdown.sweep(s, samples=16, progress=False)
+
+
+def test_a_law_that_returns_none_is_named(scenario):
+    # A `return` forgotten: refused, not taken as commanding nothing.
+    touchdown.register_law("returns_none", ReturnsNone())
+    s = scenario.copy()
+    s["control.law"] = "returns_none"
+    said = r'control law "returns_none": command\(sensed, memory\) returned None; return a touchdown.Command'
+    with pytest.raises(TypeError, match=said):
+        touchdown.sweep(s, samples=16, progress=False)
+    with pytest.raises(TypeError, match=said):
+        touchdown.trace(s, sample=0)
 
 
 def test_an_object_without_command_is_refused():

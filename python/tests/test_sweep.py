@@ -87,7 +87,7 @@ def test_inputs_from_any_table(cli, tmp_path, kind):
 
 
 def test_bad_arguments_raise_with_the_command_lines_message(tmp_path):
-    with pytest.raises(touchdown.TouchdownError, match="--samples must be at least 1"):
+    with pytest.raises(ValueError, match="samples=0 is out of range: expected a whole number from 1"):
         touchdown.sweep(samples=0, progress=False)
     with pytest.raises(touchdown.TouchdownError, match="contradicts the extension"):
         touchdown.sweep(samples=10, out=tmp_path / "x.parquet", format="arrow", progress=False)
@@ -105,9 +105,13 @@ def test_ctrl_c_stops_the_sweep_and_leaves_nothing_half_written(cli, tmp_path):
     # Ctrl-C as the main thread gets it: KeyboardInterrupt, half a second in.
     timer = threading.Timer(0.5, _thread.interrupt_main)
     timer.start()
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt) as stopped:
         touchdown.sweep(samples=2_000_000, seed=5, out=out, progress=False)
     timer.cancel()
+    # It says where the rows went, and how to go on.
+    said = str(stopped.value)
+    assert f"samples done, in {tmp_path / 'big.arrow.interrupted'} (a valid file)" in said, said
+    assert "--resume" in said, said
     # No file under the name asked for, no temporary file: the rows done are in a valid
     # file under the interrupted sweep's name, which the command line finishes.
     stopped = tmp_path / "big.arrow.interrupted"
@@ -120,7 +124,7 @@ def test_ctrl_c_stops_the_sweep_and_leaves_nothing_half_written(cli, tmp_path):
 def test_ctrl_c_without_a_file(tmp_path):
     timer = threading.Timer(0.3, _thread.interrupt_main)
     timer.start()
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt, match="samples done; nothing was kept"):
         touchdown.sweep(samples=2_000_000, progress=False)
     timer.cancel()
 

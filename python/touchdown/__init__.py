@@ -26,12 +26,12 @@ import contextlib
 import dataclasses
 import importlib.util
 import json
-import operator
 import os
+import re
 import sys
 import tempfile
 from pathlib import Path
-from typing import Any, Dict, Iterator, Optional, Union
+from typing import Any, Dict, Iterator, Literal, Optional, Union, overload
 
 import pyarrow as pa
 
@@ -66,6 +66,9 @@ __all__ = [
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
+#: A whole number as the command line takes one: an int, a float that is whole (``1e5``)
+#: or a string (``"1e5"``, ``"2.5e5"``, ``"1_000"``).
+Whole = Union[int, float, str]
 
 
 @dataclasses.dataclass
@@ -86,19 +89,6 @@ class Command:
     force_b_n: Any = None
     torque_b_n_m: Any = None
     done: Any = None
-
-
-def _whole(name: str, value: Any) -> Optional[int]:
-    """A count or seed as a whole number: an int, or a float that is one (``1e6``)."""
-    if value is None:
-        return None
-    if isinstance(value, bool):
-        raise TypeError(f"{name}: expected a whole number, not a bool")
-    if isinstance(value, float):
-        if not value.is_integer():
-            raise ValueError(f"{name}: {value} is not a whole number")
-        return int(value)
-    return operator.index(value)
 
 
 def _scenario_text(scenario: Union[None, Scenario, PathLike]) -> str:
@@ -131,10 +121,24 @@ def _as_arrow(table: Any) -> pa.Table:
     )
 
 
+#: What messages call a table of inputs held in memory (not the temporary file it is
+#: written to for the run, which is gone when the message is read).
+_GIVEN_TABLE = "inputs (the table given)"
+
+#: A sweep's table of inputs that was held in memory, as the library names it when it is
+#: not there (the temporary file it was written to is gone with the sweep's run).
+_GONE_TABLE = re.compile(
+    r"the table of inputs \S*touchdown-inputs-[^/\\]+[/\\]inputs\.arrow, which is not there: "
+    r"give it with --inputs"
+)
+_GONE_TABLE_SAYS = "a table of inputs held in memory: give trace inputs= that table again"
+
+
 @contextlib.contextmanager
 def _inputs_path(inputs: Any) -> Iterator[Optional[str]]:
     """The path of a table of inputs: a path as it is; a table in memory written as an
-    Arrow IPC file into a private temporary folder, removed when the run is over."""
+    Arrow IPC file into a private temporary folder, removed when the run is over. An
+    exception that names that file names the table given instead."""
     if inputs is None:
         yield None
         return
@@ -146,7 +150,16 @@ def _inputs_path(inputs: Any) -> Iterator[Optional[str]]:
         path = os.path.join(folder, "inputs.arrow")
         with pa.OSFile(path, "wb") as sink, pa.ipc.new_file(sink, table.schema) as writer:
             writer.write_table(table)
-        yield path
+        try:
+            yield path
+        except BaseException as e:
+            e.args = tuple(
+                a.replace(f"--inputs {path}", _GIVEN_TABLE).replace(path, _GIVEN_TABLE)
+                if isinstance(a, str)
+                else a
+                for a in e.args
+            )
+            raise
 
 
 class _Bar:
@@ -192,12 +205,45 @@ class _Bar:
             sys.stderr.write("\n")
 
 
+# A pyarrow.Table where table= is left True (type checkers know it), else None or one.
+@overload
 def sweep(
     scenario: Union[None, Scenario, PathLike] = None,
     *,
-    samples: Union[None, int, float] = None,
-    seed: Optional[int] = None,
-    threads: Optional[int] = None,
+    samples: Optional[Whole] = None,
+    seed: Optional[Whole] = None,
+    threads: Optional[Whole] = None,
+    design: Optional[str] = None,
+    inputs: Any = None,
+    keep_columns: bool = False,
+    out: Optional[PathLike] = None,
+    format: Optional[str] = None,
+    kernel: str = "auto",
+    progress: Optional[bool] = None,
+    table: Literal[True] = ...,
+) -> pa.Table: ...
+@overload
+def sweep(
+    scenario: Union[None, Scenario, PathLike] = None,
+    *,
+    samples: Optional[Whole] = None,
+    seed: Optional[Whole] = None,
+    threads: Optional[Whole] = None,
+    design: Optional[str] = None,
+    inputs: Any = None,
+    keep_columns: bool = False,
+    out: Optional[PathLike] = None,
+    format: Optional[str] = None,
+    kernel: str = "auto",
+    progress: Optional[bool] = None,
+    table: bool = ...,
+) -> Optional[pa.Table]: ...
+def sweep(
+    scenario: Union[None, Scenario, PathLike] = None,
+    *,
+    samples: Optional[Whole] = None,
+    seed: Optional[Whole] = None,
+    threads: Optional[Whole] = None,
     design: Optional[str] = None,
     inputs: Any = None,
     keep_columns: bool = False,
@@ -211,18 +257,19 @@ def sweep(
 
     Args:
         scenario: A ``Scenario``, the path of a scenario file, or None for the default.
-        samples: Number of samples, a whole number (``100_000`` or ``1e5``; default: the
-            scenario's ``samples``, or the rows of ``inputs``).
-        seed: The sweep's seed (default: the scenario's).
-        threads: Worker threads (default: one per core; one where the scenario's law is a
-            Python law, which runs one call at a time under the GIL).
+        samples: Number of samples, a whole number from 1 to 2^63 - 1 (``100_000``,
+            ``1e5``, or a string as ``--samples`` takes it: ``"1e5"``, ``"2.5e5"``;
+            default: the scenario's ``samples``, or the rows of ``inputs``).
+        seed: The sweep's seed, 0 to 2^63 - 1 (default: the scenario's).
+        threads: Worker threads, 1 to 1024 (default: one per core; one where the
+            scenario's law is a Python law, which runs one call at a time under the GIL).
         design: ``"independent"``, ``"sobol-sequence"`` or ``"sobol-indices"`` (default:
             the scenario's).
         inputs: Your own inputs, one sample per row: a path (CSV, Arrow or Parquet) or
             any table (pyarrow, polars, pandas), its columns named as the sweep's input
             columns. A table in memory is written to a private temporary file for the run
-            and removed after it; to ``trace`` a row of such a sweep, give ``inputs=`` the
-            same table again.
+            and removed after it (messages call it "inputs (the table given)"); to
+            ``trace`` a row of such a sweep, give ``inputs=`` the same table again.
         keep_columns: Pass the other columns of ``inputs`` through to the output.
         out: Also write the sweep to this file (Arrow, or Parquet by its extension or
             ``format``), as ``touchdown sweep --out`` does: under its name only when
@@ -243,18 +290,21 @@ def sweep(
 
     Raises:
         ScenarioError: The scenario is refused.
+        ValueError: A count or seed out of its range, or not a whole number (the message
+            names the argument and the range).
         TouchdownError: Any other bad input, with the command line's message.
-        KeyboardInterrupt: Ctrl-C (or a law that raised it) stopped the sweep. Nothing
-            half-written is left under ``out``: the rows done are in ``OUT.interrupted``, a
-            valid file that ``touchdown sweep --resume OUT`` finishes.
+        KeyboardInterrupt: Ctrl-C (or a law that raised it) stopped the sweep; its message
+            says where the rows done are. Nothing half-written is left under ``out``: the
+            rows done are in ``OUT.interrupted``, a valid file that ``touchdown sweep
+            --resume OUT`` finishes.
     """
     text = _scenario_text(scenario)
     with _inputs_path(inputs) as inputs_path:
         run = _touchdown.SweepRun(
             text,
-            samples=_whole("samples", samples),
-            seed=_whole("seed", seed),
-            threads=_whole("threads", threads),
+            samples=samples,
+            seed=seed,
+            threads=threads,
             design=design,
             inputs=inputs_path,
             keep_columns=keep_columns,
@@ -267,15 +317,23 @@ def sweep(
         try:
             while not run.wait(0.1):
                 bar.update(run.done)
-        except BaseException:
+        except BaseException as stopped:
             # Ctrl-C (or any exception) while waiting: stop the workers, leave the file
-            # valid and under the name of an interrupted sweep, and go on raising.
+            # valid and under the name of an interrupted sweep, and go on raising; a
+            # KeyboardInterrupt says where the rows done are (or that none were kept).
             run.stop()
             while not run.wait(0.5):
                 pass
             bar.close()
-            with contextlib.suppress(BaseException):
+            try:
                 run.result()
+                where = f"the sweep was over: its file is {run.out}" if run.out else None
+            except KeyboardInterrupt as said:
+                where = str(said)
+            except BaseException:
+                where = None
+            if isinstance(stopped, KeyboardInterrupt) and where and not stopped.args:
+                stopped.args = (where,)
             raise
         bar.update(run.done)
         bar.close()
@@ -327,10 +385,10 @@ def _sweep_metadata(table: Any) -> Dict[str, str]:
 
 def trace(
     source: Any = None,
-    sample: int = 0,
+    sample: Whole = 0,
     *,
-    seed: Optional[int] = None,
-    every: int = 1,
+    seed: Optional[Whole] = None,
+    every: Whole = 1,
     inputs: Any = None,
 ) -> Trace:
     """Runs one sample in full detail with the reference model, as ``touchdown trace``.
@@ -340,9 +398,9 @@ def trace(
             None for the default scenario, or a sweep: its file (Arrow or Parquet) or the
             ``pyarrow.Table`` that ``sweep`` returned, whose row ``sample`` the trace runs
             exactly.
-        sample: The sample's index.
-        seed: The seed (a scenario only; a sweep has its own).
-        every: One row every ``every`` steps.
+        sample: The sample's index, from 0 (an int, or a string as ``--sample`` takes it).
+        seed: The seed, 0 to 2^63 - 1 (a scenario only; a sweep has its own).
+        every: One row every ``every`` steps, from 1.
         inputs: The table of inputs the sample's row comes from (a path or a table).
 
     Returns:
@@ -352,17 +410,21 @@ def trace(
     with _inputs_path(inputs) as inputs_path:
         kwargs["inputs"] = inputs_path
         if source is None or isinstance(source, Scenario):
-            kwargs.update(scenario_toml=_scenario_text(source), seed=_whole("seed", seed))
+            kwargs.update(scenario_toml=_scenario_text(source), seed=seed)
         elif isinstance(source, (str, os.PathLike)):
             if Path(source).suffix.lower() == ".toml":
-                kwargs.update(scenario_toml=_scenario_text(source), seed=_whole("seed", seed))
+                kwargs.update(scenario_toml=_scenario_text(source), seed=seed)
             else:
                 kwargs["sweep"] = os.fspath(source)
         else:
             kwargs["metadata"] = _sweep_metadata(source)
         if seed is not None and "scenario_toml" not in kwargs:
             raise TouchdownError("seed: a sweep's sample has the sweep's seed; drop seed=")
-        text, reader = _touchdown.trace(_whole("sample", sample), **kwargs)
+        try:
+            text, reader = _touchdown.trace(sample, **kwargs)
+        except TouchdownError as e:
+            e.args = tuple(_GONE_TABLE.sub(_GONE_TABLE_SAYS, a) if isinstance(a, str) else a for a in e.args)
+            raise
         return Trace(table=reader.read_all(), text=text)
 
 

@@ -8,6 +8,10 @@ import numpy as np
 import numpy.typing as npt
 import pyarrow as pa
 
+#: A whole number as the command line takes one: an int, a float that is whole (1e5) or a
+#: string ("1e5", "2.5e5", "1_000").
+_Whole = Union[int, float, str]
+
 ENGINE: str
 DEFAULT_TOML: str
 
@@ -26,7 +30,9 @@ class Scenario:
     def copy(self) -> Scenario: ...
     def __getitem__(self, key: str) -> Any: ...
     def __setitem__(self, key: str, value: Any) -> None: ...
+    def __delitem__(self, key: str) -> None: ...
     def __contains__(self, key: str) -> bool: ...
+    def __eq__(self, other: object) -> bool: ...
 
 class Sensed:
     t_s: npt.NDArray[np.float64]
@@ -42,9 +48,9 @@ class SweepRun:
     def __init__(
         self,
         scenario_toml: str,
-        samples: Optional[int] = None,
-        seed: Optional[int] = None,
-        threads: Optional[int] = None,
+        samples: Optional[_Whole] = None,
+        seed: Optional[_Whole] = None,
+        threads: Optional[_Whole] = None,
         design: Optional[str] = None,
         inputs: Optional[str] = None,
         keep_columns: bool = False,
@@ -66,10 +72,10 @@ class SweepRun:
 def register_law(name: str, law: Any) -> None: ...
 def registered_laws() -> List[str]: ...
 def trace(
-    sample: int,
-    every: int = 1,
+    sample: _Whole,
+    every: Optional[_Whole] = None,
     scenario_toml: Optional[str] = None,
-    seed: Optional[int] = None,
+    seed: Optional[_Whole] = None,
     sweep: Optional[str] = None,
     metadata: Optional[Dict[str, str]] = None,
     inputs: Optional[str] = None,

@@ -30,7 +30,10 @@ pub struct SweepOut {
 /// The largest count or seed: the largest whole number a scenario file holds (TOML's
 /// integers are 64-bit signed), 2^63 - 1, so that every value of a flag can be written
 /// into the scenario a file stores.
-const MAX_COUNT: u64 = i64::MAX as u64;
+pub const MAX_COUNT: u64 = i64::MAX as u64;
+
+/// The most worker threads (`--threads`).
+pub const MAX_THREADS: u64 = 1024;
 
 /// Parses a whole number from 0 to `MAX_COUNT` written as `250000`, `1e6` or `2.5e5`.
 pub fn parse_count(s: &str) -> Result<u64, String> {
@@ -59,11 +62,11 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
     parse_count(s)
 }
 
-/// A worker thread count, 1 to 1024 (`--threads`).
+/// A worker thread count, 1 to `MAX_THREADS` (`--threads`).
 fn parse_threads(s: &str) -> Result<usize, String> {
     match parse_count(s)? {
         0 => Err("must be at least 1".to_string()),
-        n if n > 1024 => Err("must be at most 1024".to_string()),
+        n if n > MAX_THREADS => Err(format!("must be at most {MAX_THREADS}")),
         n => Ok(n as usize),
     }
 }
