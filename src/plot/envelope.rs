@@ -27,7 +27,7 @@ const MIN_WIDTH: u32 = 820;
 const EMPTY: RGBColor = RGBColor(238, 238, 238);
 
 /// The outline of cells where samples broke a limit.
-const LIMIT: RGBColor = RGBColor(200, 0, 200);
+const LIMIT: RGBColor = super::canvas::LIMIT_COLOUR;
 
 /// The share of a cell's samples that broke a limit: darker than the outline, to read on
 /// any cell.

@@ -148,7 +148,7 @@ impl Report {
             outcomes: Outcome::listed(controlled)
                 .map(|o| (o, Share::of(counts[o as usize], total)))
                 .collect(),
-            stable_within_limits: gear.limits.map(|(within, _)| Share::of(within, total)),
+            stable_within_limits: gear.limits.map(|c| Share::of(c.within, total)),
             gear: gear.section(total, scenario.as_ref()),
             terrain,
             allowable,

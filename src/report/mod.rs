@@ -19,6 +19,8 @@ mod numbers;
 mod release;
 mod thrust;
 
+pub use gear::{LimitCounts, limit_rows};
+
 use crate::output::sweep::SweepSource;
 use crate::weighting::SlopeDistribution;
 

@@ -5,7 +5,8 @@ use super::plan::SweepPlan;
 use super::workers::{CHUNK, Interrupted, shown, tell};
 use crate::output::sweep::{SweepInfo, SweepWriter};
 use crate::reference::{Model, Outcome};
-use crate::scenario::Scenario;
+use crate::report::LimitCounts;
+use crate::scenario::{Broken, Scenario};
 use std::ops::Range;
 
 /// How `execute` runs a plan: on which pool, stopped by which signal flag
@@ -40,6 +41,9 @@ pub struct Executed {
     pub stats: crate::sweep::LaneStats,
     /// Rows per outcome, in the order of `Outcome::ALL`.
     pub counts: [u64; Outcome::ALL.len()],
+    /// With `[limits]`: the rows within them and the rows that broke each (boxed, so that
+    /// a run without limits carries one pointer).
+    pub limits: Option<Box<LimitCounts>>,
     /// Time steps summed over the rows in the file (kept and computed).
     pub steps: u64,
     /// Samples of this run that never touched the surface.
@@ -82,11 +86,17 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         ));
     }
     let mut counts = [0u64; Outcome::ALL.len()];
+    let mut limits = scenario.limits.map(|_| Box::new(LimitCounts::default()));
     let mut steps = 0u64;
     if let Some(from) = &plan.resume {
         let (kept_counts, kept_steps) = from.copy_kept_rows(range.start, &mut writer)?;
-        for (o, c) in Outcome::ALL.iter().zip(&mut counts) {
-            *c += kept_counts.get(o.name()).copied().unwrap_or(0);
+        for ((outcome, broken), &n) in &kept_counts {
+            if let Some(o) = Outcome::from_name(outcome) {
+                counts[o as usize] += n;
+                if let Some(l) = &mut limits {
+                    l.add(o, Broken::parse(broken), n);
+                }
+            }
         }
         steps += kept_steps;
     }
@@ -110,6 +120,9 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
             |rows| {
                 for r in &rows {
                     counts[r.summary.outcome as usize] += 1;
+                    if let (Some(l), Some(broken)) = (&mut limits, r.summary.limits_broken) {
+                        l.add(r.summary.outcome, broken, 1);
+                    }
                     steps += r.summary.steps;
                     let never = r.summary.first_contact_s.is_none();
                     untouched += u64::from(never);
@@ -149,6 +162,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         wall_s: start.elapsed().as_secs_f64(),
         stats: ran.stats,
         counts,
+        limits,
         steps,
         untouched,
         untouched_tipped,
