@@ -47,5 +47,6 @@ mod sweep_cli;
 mod thrust;
 mod user_law;
 mod validation;
+mod view_charts;
 mod weighting;
 mod write_errors;
