@@ -120,6 +120,59 @@ impl Quantity {
     }
 }
 
+/// A limit of `[limits]` on a quantity's axis: what the exceedance picture marks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitMark {
+    /// The quantity's key (`Quantity::key`).
+    pub key: &'static str,
+    /// The limit in the quantity's unit.
+    pub value: f64,
+    /// What it is, for the picture: the key in `[limits]` and its value.
+    pub label: String,
+}
+
+/// The limits of `scenario` on the axes of the quantities `gather` gives: the strut loads
+/// and the acceleration at their values, a least stroke margin (with dampers) at the stroke
+/// that leaves it, the usable stroke less the margin.
+#[must_use]
+pub fn limit_marks(scenario: &crate::scenario::Scenario) -> Vec<LimitMark> {
+    let Some(l) = scenario.limits else {
+        return Vec::new();
+    };
+    let mark = |key, value: Option<f64>, label: &dyn Fn(f64) -> String| {
+        value.map(|v| LimitMark {
+            key,
+            value: v,
+            label: label(v),
+        })
+    };
+    let usable_m: f64 = scenario.damper.stages.iter().map(|s| s.stroke_m).sum();
+    let stroke = l
+        .stroke_margin_m
+        .filter(|_| scenario.damper.enabled)
+        .map(|m| 1e3 * (usable_m - m));
+    [
+        mark("peak_axial_force_n", l.axial_force_n, &|v| {
+            format!("limit axial_force_n = {v} N")
+        }),
+        mark("peak_side_force_n", l.side_force_n, &|v| {
+            format!("limit side_force_n = {v} N")
+        }),
+        mark("stroke_mm", stroke, &|v| {
+            format!(
+                "limit stroke_margin_m = {}: stroke {v} mm",
+                l.stroke_margin_m.unwrap_or_default()
+            )
+        }),
+        mark("peak_acceleration_m_s2", l.acceleration_m_s2, &|v| {
+            format!("limit acceleration_m_s2 = {v} m/s^2")
+        }),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
 /// A design value: the `level`-quantile of the samples (nearest rank, as the report's
 /// percentiles), and its interval.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -613,3 +613,14 @@ pub(crate) fn pct(x: f64) -> String {
         format!("{:.1e} %", 100.0 * x)
     }
 }
+
+/// The JSON a page of `touchdown view` or `site` holds in its `<script id="ID">` (the data
+/// as the page reads it).
+pub(crate) fn page_json(page: &str, id: &str) -> serde_json::Value {
+    let start = page
+        .find(&format!("<script id=\"{id}\" type=\"application/json\">"))
+        .expect("the page's data");
+    let json = &page[start..];
+    let json = &json[json.find('>').unwrap() + 1..json.find("</script>").unwrap()];
+    serde_json::from_str(&json.replace("<\\/", "</")).expect("the page's JSON")
+}

@@ -294,6 +294,23 @@ fn any_two_numeric_columns_span_the_plane() {
     );
     let c = columns(&dir.join("d.arrow"));
     let rows = csv_rows(&dir.join("d-envelope.csv"));
+    // Every row names the columns its x and y ranges are of, after the columns that were
+    // there before (a reader by place reads those as before).
+    let header = std::fs::read_to_string(dir.join("d-envelope.csv")).unwrap();
+    assert!(
+        header
+            .lines()
+            .next()
+            .unwrap()
+            .ends_with(",row_boundary_high_x,x_column,y_column"),
+        "{header}"
+    );
+    for r in &rows {
+        assert_eq!(
+            (r["x_column"].as_str(), r["y_column"].as_str()),
+            ("velocity_error_x_m_s", "bounces")
+        );
+    }
     let touched: Vec<usize> = (0..1000)
         .filter(|&i| !c.numbers["touchdown_normal_speed_m_s"][i].is_nan())
         .collect();

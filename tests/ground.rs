@@ -10,13 +10,13 @@ const REGOLITH: &str = "[surface]\nkind = \"regolith\"\n[surface.regolith]\n\
     cohesion_pa = { dist = \"uniform\", min = 0.0, max = 500.0 }\n\
     bekker_n = { dist = \"uniform\", min = 0.8, max = 1.2 }\n";
 
-#[test]
-fn a_regolith_sweep_writes_footprints_and_the_soil_s_values() {
-    let dir = TempDir::new("ground-regolith-sweep");
+/// Sweeps `samples` samples of `REGOLITH` into `r.arrow` and 50 of the default scenario
+/// (the elastic plane) into `e.arrow`, in `dir`.
+fn regolith_and_elastic(dir: &TempDir, samples: &str) {
     dir.write("regolith.toml", REGOLITH);
     for (args, out) in [
         (
-            &["--scenario", "regolith.toml", "--samples", "300"][..],
+            &["--scenario", "regolith.toml", "--samples", samples][..],
             "r.arrow",
         ),
         (&["--samples", "50"][..], "e.arrow"),
@@ -27,6 +27,12 @@ fn a_regolith_sweep_writes_footprints_and_the_soil_s_values() {
         );
         assert_eq!(run.code, Some(0), "{run}");
     }
+}
+
+#[test]
+fn a_regolith_sweep_writes_footprints_and_the_soil_s_values() {
+    let dir = TempDir::new("ground-regolith-sweep");
+    regolith_and_elastic(&dir, "300");
     let r = dir.join("r.arrow");
     let e = dir.join("e.arrow");
     let scenario = Scenario::from_toml(REGOLITH).unwrap();
@@ -77,6 +83,58 @@ fn a_regolith_sweep_writes_footprints_and_the_soil_s_values() {
         arrow_column(&r, "bekker_k_phi").is_none(),
         "fixed: no column"
     );
+}
+
+#[test]
+fn a_regolith_report_gives_the_footprints_and_the_soil_s_energy() {
+    // Per sample the deepest leg's footprint (mm) and the energy all legs' soil kept:
+    // the report's mean and largest of each are those of the file's columns; a sweep on
+    // the elastic plane has no such section.
+    let dir = TempDir::new("ground-regolith-report");
+    regolith_and_elastic(&dir, "200");
+    let r = dir.join("r.arrow");
+    let legs: Vec<[Vec<f64>; 2]> = (0..4)
+        .map(|k| {
+            ["sinkage_m", "soil_absorbed_j"]
+                .map(|c| arrow_column(&r, &format!("leg{k}_{c}")).unwrap())
+        })
+        .collect();
+    let n = legs[0][0].len();
+    let deepest: Vec<f64> = (0..n)
+        .map(|i| 1e3 * legs.iter().map(|l| l[0][i]).fold(0.0, f64::max))
+        .collect();
+    let kept: Vec<f64> = (0..n).map(|i| legs.iter().map(|l| l[1][i]).sum()).collect();
+    let json = touchdown(dir.path(), &["report", "r.arrow", "--json"]);
+    json.assert_ok();
+    let j: serde_json::Value = serde_json::from_str(&json.stdout).unwrap();
+    for (key, values) in [("sinkage_mm", &deepest), ("soil_absorbed_j", &kept)] {
+        let q = &j["regolith"][key];
+        let mean = values.iter().sum::<f64>() / n as f64;
+        let max = values.iter().copied().fold(0.0, f64::max);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+        assert!(
+            close(q["mean"].as_f64().unwrap(), mean),
+            "{key}: {q} against {mean}"
+        );
+        assert!(
+            close(q["max"].as_f64().unwrap(), max),
+            "{key}: {q} against {max}"
+        );
+        assert!(max > 0.0, "{key}: none in the soil");
+    }
+    let markdown = touchdown(dir.path(), &["report", "r.arrow"]);
+    markdown.assert_ok();
+    let max = deepest.iter().copied().fold(0.0, f64::max);
+    let row = "| footprint depth once unloaded (deepest leg) (mm) |";
+    let line = markdown.stdout.lines().find(|l| l.starts_with(row));
+    assert!(
+        markdown.stdout.contains("\n## Regolith\n")
+            && line.is_some_and(|l| l.ends_with(&format!(" {max:.4} |"))),
+        "{markdown}"
+    );
+    let elastic = touchdown(dir.path(), &["report", "e.arrow"]);
+    elastic.assert_ok();
+    assert!(!elastic.stdout.contains("Regolith"), "{elastic}");
 }
 
 /// Gentle level touchdowns on regolith: a fall of 0.05-0.15 m/s (`sqrt(2 g h)`) onto

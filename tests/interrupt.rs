@@ -16,8 +16,9 @@ use touchdown::output::format::BATCH_ROWS as BATCH;
 const SHORT: &str = "[simulation]\nt_max_s = 5.0\n";
 
 /// Flights cut at 60 s: about 9,000 samples/s on two cores (measured 9,190), so that 60,000
-/// samples, fewer than a record batch holds, run for 6.5 s.
-const LONGER: &str = "[simulation]\nt_max_s = 60.0\n";
+/// samples, fewer than a record batch holds, run for 6.5 s; with a limit on the side load,
+/// which some samples break.
+const LONGER: &str = "[simulation]\nt_max_s = 60.0\n[limits]\nside_force_n = 100.0\n";
 
 /// The sample column of a sweep file (Arrow or Parquet).
 fn sample_column(path: &Path) -> Vec<u64> {
@@ -138,11 +139,13 @@ fn resume_to_the_end(
             .contains(&format!("samples                 {samples}\n")),
         "{resumed}"
     );
-    // Its outcome counts are of every row of the file, those it took over included.
+    // Its outcome counts are of every row of the file, those it took over included (the
+    // rows of limits, after them, are counted below).
     let counted: u64 = resumed
         .stdout
         .lines()
-        .filter(|l| l.starts_with("  ") && l.ends_with('%'))
+        .take_while(|l| *l != "limits")
+        .filter(|l| l.starts_with("  ") && l.ends_with('%') && !l.contains("within limits"))
         .map(|l| {
             l.split_whitespace()
                 .nth(1)
@@ -230,8 +233,28 @@ fn resume_keeps_every_row_and_readers_say_the_file_is_unfinished() {
     std::fs::remove_file(dir.join("part.arrow")).unwrap();
     std::fs::remove_dir_all(dir.join("e")).unwrap();
 
-    // Resumed, it keeps every row done, not only whole batches.
+    // Resumed, it keeps every row done, not only whole batches, and counts the limits of
+    // every row as the report of the whole file does.
     let resumed = resume_to_the_end(&dir, "r.arrow", "whole.arrow", 60_000, &["s.toml"]);
+    let report = touchdown(dir.path(), &["report", "whole.arrow"]);
+    assert_eq!(report.code, Some(0), "{report}");
+    for name in [
+        "stable within limits",
+        "broke `side_force`: peak side load above 100 N",
+    ] {
+        let count = |text: &str, bar: &str| -> u64 {
+            let line = text
+                .lines()
+                .find(|l| l.trim_start_matches(bar).trim_start().starts_with(name));
+            let after = line.map(|l| &l[l.find(name).unwrap() + name.len()..]);
+            after
+                .and_then(|a| a.split([' ', '|']).find(|w| !w.is_empty())?.parse().ok())
+                .unwrap_or_else(|| panic!("no {name} in\n{text}"))
+        };
+        let n = count(&resumed.stdout, " ");
+        assert_eq!(n, count(&report.stdout, "|"), "{name}\n{resumed}");
+        assert!(n > 0 && n < 60_000, "{name}: {n}");
+    }
     assert!(
         resumed
             .stderr

@@ -224,6 +224,7 @@ fn report_json_gives_the_sweeps_counts_and_the_markdowns_numbers() {
     for section in [
         "gear",
         "stable_within_limits",
+        "regolith",
         "terrain",
         "thrust",
         "release",

@@ -465,12 +465,7 @@ fn each_facet_takes_its_share_of_the_map_near_the_poles_too() {
 
 /// The JSON of a page (the site as the page reads it).
 fn page_data(page: &str) -> serde_json::Value {
-    let start = page
-        .find("<script id=\"site-data\" type=\"application/json\">")
-        .expect("the page's data");
-    let json = &page[start..];
-    let json = &json[json.find('>').unwrap() + 1..json.find("</script>").unwrap()];
-    serde_json::from_str(&json.replace("<\\/", "</")).expect("the page's JSON")
+    crate::common::page_json(page, "site-data")
 }
 
 /// The numbers of a column of the page's facets (NaN for null).

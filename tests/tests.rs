@@ -48,5 +48,6 @@ mod sweep_cli;
 mod thrust;
 mod user_law;
 mod validation;
+mod view_charts;
 mod weighting;
 mod write_errors;

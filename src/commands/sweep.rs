@@ -120,19 +120,51 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         done.serial_share,
         1.0 / (done.serial_share + (1.0 - done.serial_share) / 16.0),
     );
-    // `held` is listed where a lander can be held: with a control loop.
-    let controlled = plan.scenario.control.is_some();
-    for (o, c) in Outcome::listed(controlled).map(|o| (o, done.counts[o as usize])) {
-        t.push_str(&format!(
-            "  {:<10} {c:>10}  {:>6.2} %\n",
-            o.name(),
-            100.0 * c as f64 / rows as f64
-        ));
-    }
+    t.push_str(&outcome_rows(&plan.scenario, &done));
     // The command line always names an output (`--out`'s default, or `--resume PATH`).
     let out = plan.out.clone().unwrap_or_else(|| args.output.out.clone());
     t.push_str(&format!("wrote {}\n", shown(&out)));
     say("the sweep's summary", &t, &out)?;
     warn_untouched(&done, &plan.scenario, "");
     Ok(())
+}
+
+/// The closing summary's outcome rows: each outcome listed and its share, with `[limits]`
+/// "stable within limits" after "stable" and then the samples that broke each limit, as
+/// `report` words them.
+fn outcome_rows(scenario: &crate::scenario::Scenario, done: &crate::run::Executed) -> String {
+    let rows = done.rows;
+    let row = |name: &str, c: u64, width: usize| {
+        format!(
+            "  {name:<width$} {c:>10}  {:>6.2} %\n",
+            100.0 * c as f64 / rows as f64
+        )
+    };
+    let limits = scenario.limits.zip(done.limits.as_deref());
+    let (within, broken) = limits.map_or((0, Vec::new()), |(l, counts)| {
+        crate::report::limit_rows(&l, counts)
+    });
+    let within_name = "stable within limits";
+    let width = if limits.is_some() {
+        within_name.len()
+    } else {
+        10
+    };
+    let mut t = String::new();
+    // `held` is listed where a lander can be held: with a control loop.
+    let controlled = scenario.control.is_some();
+    for o in Outcome::listed(controlled) {
+        t.push_str(&row(o.name(), done.counts[o as usize], width));
+        if o == Outcome::Stable && limits.is_some() {
+            t.push_str(&row(within_name, within, width));
+        }
+    }
+    if limits.is_some() {
+        t.push_str("limits\n");
+        let width = broken.iter().map(|(name, _)| name.len()).max().unwrap_or(0);
+        for (name, c) in &broken {
+            t.push_str(&row(name, *c, width));
+        }
+    }
+    t
 }

@@ -157,7 +157,44 @@ pub fn describe(scenario: &Scenario, sample: &Sample, s: &Summary) -> String {
         }
         t.push('\n');
     }
+    t.push_str(&struts(s));
     t.push_str(&flown(scenario, s));
+    t
+}
+
+/// Each leg's strut-load peaks with their times and, with dampers, its stroke margin at the
+/// end, as the sweep's `leg{k}_peak_axial_force_n` ... `leg{k}_stroke_margin_m`; with
+/// `[limits]`, the limits the sample broke, as its `limits_broken`.
+fn struts(s: &Summary) -> String {
+    let dampers = s.legs.iter().any(|l| l.stroke_margin_m.is_some());
+    let mut t = String::from("\n  leg  peak axial load N     at s   peak side load N     at s");
+    t.push_str(if dampers {
+        "   stroke margin mm\n"
+    } else {
+        "\n"
+    });
+    let at = |time: Option<f64>| time.map_or("never".to_string(), |x| format!("{x:.3}"));
+    for (k, l) in s.legs.iter().enumerate() {
+        t.push_str(&format!(
+            "  {k:>3}  {:>17.2}   {:>6}   {:>16.2}   {:>6}",
+            l.peak_axial_force_n,
+            at(l.peak_axial_force_s),
+            l.peak_side_force_n,
+            at(l.peak_side_force_s)
+        ));
+        if let Some(margin) = l.stroke_margin_m {
+            t.push_str(&format!("   {:>16.3}", margin * 1e3));
+            if l.bottomed {
+                t.push_str(" (bottomed)");
+            }
+        }
+        t.push('\n');
+    }
+    if let Some(broken) = s.limits_broken {
+        let names = broken.names();
+        let names = if names.is_empty() { "none" } else { &names };
+        t.push_str(&format!("\n  {:<24} {names}\n", "limits broken"));
+    }
     t
 }
 

@@ -160,7 +160,9 @@ fn boundary_fields(r: &Row) -> [String; 3] {
 /// 100 MB of text, never held): one row per cell (panel by panel, y bin by y bin, x bin
 /// by x bin), with its slope band and facing, its x and y ranges, its samples per outcome,
 /// the stable share with its 95 % Wilson interval, the samples that broke a limit (empty
-/// without a `limits_broken` column), and its row's samples and boundary.
+/// without a `limits_broken` column), its row's samples and boundary, and the columns
+/// of the sweep that x and y are (`x_column`, `y_column`: last, so that a reader of the
+/// columns before them, by name or by place, reads them as before).
 pub fn write_csv(e: &Envelope, out: &mut impl std::io::Write) -> std::io::Result<()> {
     write!(
         out,
@@ -171,8 +173,11 @@ pub fn write_csv(e: &Envelope, out: &mut impl std::io::Write) -> std::io::Result
     }
     out.write_all(
         b"stable_share,stable_share_low,stable_share_high,limits_broken,\
-         row_samples,row_boundary_x,row_boundary_low_x,row_boundary_high_x\n",
+         row_samples,row_boundary_x,row_boundary_low_x,row_boundary_high_x,x_column,y_column\n",
     )?;
+    // Column names are identifiers (letters, digits, `_`, `.`): no quoting is needed, but
+    // a name with a comma or quote is quoted all the same.
+    let (x_column, y_column) = (csv_field(&e.x.name), csv_field(&e.y.name));
     let (nx, ny) = (e.x.bins, e.y.bins);
     for (k, p) in e.panels.iter().enumerate() {
         for j in 0..ny {
@@ -204,9 +209,19 @@ pub fn write_csv(e: &Envelope, out: &mut impl std::io::Write) -> std::io::Result
                 if e.limits {
                     write!(out, "{}", c.limits_broken)?;
                 }
-                writeln!(out, ",{},{b},{lo},{hi}", row.samples)?;
+                writeln!(out, ",{},{b},{lo},{hi},{x_column},{y_column}", row.samples)?;
             }
         }
     }
     Ok(())
+}
+
+/// `text` as one CSV field: as it is, or quoted (quotes doubled) where it holds a comma, a
+/// quote or a line break.
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
 }

@@ -14,6 +14,10 @@ use arrow_array::{Array, StringArray, UInt64Array};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
+/// The rows a resumed sweep took over, counted by outcome and broken limits (their names as
+/// `limits_broken` writes them, empty without that column).
+pub type KeptCounts = HashMap<(String, String), u64>;
+
 /// An interrupted sweep, as its file describes it.
 pub struct Interrupted {
     /// The interrupted file (`OUT.interrupted`).
@@ -123,13 +127,13 @@ impl Interrupted {
 
     /// Copies the first `kept_rows()` rows to `writer`, checking that they are samples
     /// `first..`, in order: the whole batches written, the rows after them held to head the
-    /// next. Returns the outcome counts (by name) and the lander-steps of the copied rows,
-    /// for the closing summary.
+    /// next. Returns the counts of the copied rows and their lander-steps, for the closing
+    /// summary.
     pub fn copy_kept_rows(
         &self,
         first: u64,
         writer: &mut SweepWriter,
-    ) -> anyhow::Result<(HashMap<String, u64>, u64)> {
+    ) -> anyhow::Result<(KeptCounts, u64)> {
         let kept = self.kept_rows();
         let (_, batches) = open(&self.path, self.format)?;
         let mut rebatcher = Rebatcher::new(writer.schema().clone());
@@ -148,11 +152,15 @@ impl Interrupted {
             let samples = column("sample")?.as_any().downcast_ref::<UInt64Array>();
             let outcomes = column("outcome")?.as_any().downcast_ref::<StringArray>();
             let step_counts = column("steps")?.as_any().downcast_ref::<UInt64Array>();
-            let (Some(samples), Some(outcomes), Some(step_counts)) =
-                (samples, outcomes, step_counts)
+            let limits = b
+                .column_by_name(super::sweep::LIMITS_COLUMN)
+                .map(|c| c.as_any().downcast_ref::<StringArray>());
+            let (Some(samples), Some(outcomes), Some(step_counts), None | Some(Some(_))) =
+                (samples, outcomes, step_counts, limits)
             else {
                 bail!("{}: a column has the wrong type", self.path.display());
             };
+            let limits = limits.flatten();
             for s in samples.values() {
                 if *s != next {
                     bail!(
@@ -162,8 +170,10 @@ impl Interrupted {
                 }
                 next += 1;
             }
-            for o in outcomes.iter().flatten() {
-                *counts.entry(o.to_string()).or_insert(0) += 1;
+            for (i, o) in outcomes.iter().enumerate() {
+                let broken = limits.map_or("", |l| l.value(i));
+                let key = (o.unwrap_or_default().to_string(), broken.to_string());
+                *counts.entry(key).or_insert(0) += 1;
             }
             steps += step_counts.values().iter().sum::<u64>();
             rebatcher.push(b, writer)?;

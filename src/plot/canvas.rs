@@ -38,6 +38,10 @@ pub(crate) const SERIES_COLOURS: [RGBColor; 8] = [
     RGBColor(127, 127, 127),
 ];
 
+/// The colour of what `[limits]` marks: the exceedance picture's limit lines, the envelope's
+/// outline of cells where samples broke a limit.
+pub(crate) const LIMIT_COLOUR: RGBColor = RGBColor(200, 0, 200);
+
 /// Registers the embedded font once per process.
 pub(crate) fn register_font() -> anyhow::Result<()> {
     static DONE: OnceLock<bool> = OnceLock::new();

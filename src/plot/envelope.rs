@@ -27,7 +27,7 @@ const MIN_WIDTH: u32 = 820;
 const EMPTY: RGBColor = RGBColor(238, 238, 238);
 
 /// The outline of cells where samples broke a limit.
-const LIMIT: RGBColor = RGBColor(200, 0, 200);
+const LIMIT: RGBColor = super::canvas::LIMIT_COLOUR;
 
 /// The share of a cell's samples that broke a limit: darker than the outline, to read on
 /// any cell.
@@ -195,6 +195,7 @@ fn share_labels(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow:
         return Ok(());
     }
     let dark = RGBColor(40, 40, 40);
+    let layout = RowLayout::of(f64::from(h) / ny as f64);
     for j in 0..ny {
         for i in 0..nx {
             let c = p.cell(i, j, nx);
@@ -209,8 +210,12 @@ fn share_labels(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow:
             } else {
                 format!("{share:.0}")
             };
-            // Above the limit mark's share in a cell that has one.
-            let up = if c.limits_broken > 0 { 0.7 } else { 0.5 };
+            // Above the whisker, and above the limit mark's share in a cell that has one.
+            let up = if c.limits_broken > 0 {
+                layout.share_with_limit
+            } else {
+                layout.share
+            };
             let at = (
                 0.5 * (e.x.edge(i) + e.x.edge(i + 1)),
                 e.y.edge(j) + up * (e.y.edge(j + 1) - e.y.edge(j)),
@@ -231,7 +236,9 @@ fn share_labels(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow:
 /// did where the cell is wide enough for it.
 fn limit_marks(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow::Result<()> {
     let nx = e.x.bins;
-    let width_px = chart.plotting_area().dim_in_pixel().0 as f64 / nx as f64;
+    let (w, h) = chart.plotting_area().dim_in_pixel();
+    let width_px = f64::from(w) / nx as f64;
+    let layout = RowLayout::of(f64::from(h) / e.y.bins as f64);
     for j in 0..e.y.bins {
         for i in 0..nx {
             let c = p.cell(i, j, nx);
@@ -254,7 +261,7 @@ fn limit_marks(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow::
                 chart
                     .draw_series(std::iter::once(Text::new(
                         format!("{share:.0}%"),
-                        (0.5 * (x0 + x1), y0 + 0.3 * (y1 - y0)),
+                        (0.5 * (x0 + x1), y0 + layout.limit_share * (y1 - y0)),
                         style,
                     )))
                     .map_err(drawing)?;
@@ -264,10 +271,50 @@ fn limit_marks(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow::
     Ok(())
 }
 
+/// The whisker's caps, pixels tall.
+const WHISKER_CAP_PX: u32 = 6;
+
+/// Half the height of a cell's text (10 px type), pixels.
+const TEXT_HALF_PX: f64 = 5.0;
+
+/// Where the marks of a row of cells go, as fractions of its height from its foot: the
+/// boundary's whisker at the foot, the share of samples that broke a limit above it and
+/// the stable share above both, a pixel apart (as far as the row is tall enough: one
+/// of at least 32 pixels holds all three apart, one of at least 24 the whisker and the
+/// stable share).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct RowLayout {
+    /// The whisker's middle.
+    whisker: f64,
+    /// The middle of the share of samples that broke a limit.
+    limit_share: f64,
+    /// The middle of the stable share in a cell without a broken limit.
+    share: f64,
+    /// The same in a cell with one, above the limit share.
+    share_with_limit: f64,
+}
+
+impl RowLayout {
+    /// The layout of a row `height_px` pixels tall.
+    fn of(height_px: f64) -> RowLayout {
+        let px = |p: f64| p / height_px.max(1.0);
+        let whisker_px = f64::from(WHISKER_CAP_PX) / 2.0 + 1.0;
+        let above_whisker_px = whisker_px + f64::from(WHISKER_CAP_PX) / 2.0 + 1.0 + TEXT_HALF_PX;
+        let limit_share = px(above_whisker_px).max(0.3);
+        RowLayout {
+            whisker: px(whisker_px).min(0.5),
+            limit_share,
+            share: px(above_whisker_px).max(0.5),
+            share_with_limit: (limit_share + px(2.0 * TEXT_HALF_PX + 1.0)).max(0.7),
+        }
+    }
+}
+
 /// Each row's boundary: a line at its x across the row (joined between neighbouring rows
 /// that have one), its 95 % interval as a grey band across the row and a whisker at its
-/// middle.
+/// foot, below the cells' labels.
 fn boundary(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow::Result<()> {
+    let layout = RowLayout::of(f64::from(chart.plotting_area().dim_in_pixel().1) / e.y.bins as f64);
     let mut path: Vec<(f64, f64)> = Vec::new();
     for (j, r) in p.rows.iter().enumerate() {
         let (y0, y1) = (e.y.edge(j), e.y.edge(j + 1));
@@ -289,15 +336,14 @@ fn boundary(chart: &mut Chart2d<'_, '_>, e: &Envelope, p: &Panel) -> anyhow::Res
                 BOUNDARY.mix(0.22).filled(),
             )))
             .map_err(drawing)?;
-        let mid = 0.5 * (y0 + y1);
         chart
             .draw_series(std::iter::once(ErrorBar::new_horizontal(
-                mid,
+                y0 + layout.whisker * (y1 - y0),
                 low_deg,
                 x,
                 high_deg,
                 BOUNDARY.stroke_width(1),
-                8,
+                WHISKER_CAP_PX,
             )))
             .map_err(drawing)?;
         path.extend([(x, y0), (x, y1)]);
@@ -387,4 +433,34 @@ fn legend(area: &Area<'_>, e: &Envelope) -> anyhow::Result<()> {
             .map_err(drawing)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{RowLayout, TEXT_HALF_PX, WHISKER_CAP_PX};
+
+    #[test]
+    fn the_whisker_covers_no_label_of_its_row() {
+        // Pixels from the row's foot: the whisker's caps, each label's text, apart and in
+        // the row, for every row tall enough (24 pixels without a limit share, 32 with).
+        for h in 24..200 {
+            let h = f64::from(h);
+            let l = RowLayout::of(h);
+            let cap = f64::from(WHISKER_CAP_PX) / 2.0;
+            let whisker = (h * l.whisker - cap, h * l.whisker + cap);
+            let text = |at: f64| (h * at - TEXT_HALF_PX, h * at + TEXT_HALF_PX);
+            let apart = |a: (f64, f64), b: (f64, f64)| a.1 < b.0 || b.1 < a.0;
+            let inside = |a: (f64, f64)| a.0 >= 0.0 && a.1 <= h;
+            assert!(inside(whisker) && inside(text(l.share)), "{h}: {l:?}");
+            assert!(apart(whisker, text(l.share)), "{h}: {l:?}");
+            if h >= 32.0 {
+                let (limit, share) = (text(l.limit_share), text(l.share_with_limit));
+                assert!(inside(limit) && inside(share), "{h}: {l:?}");
+                assert!(
+                    apart(whisker, limit) && apart(whisker, share) && apart(limit, share),
+                    "{h}: {l:?}"
+                );
+            }
+        }
+    }
 }

@@ -28,6 +28,8 @@ struct Sweep {
     tips_m: Option<Vec<[f64; 3]>>,
     /// Whether the scenario in the file has its dampers on.
     dampers: bool,
+    /// The limits of the scenario in the file on the exceedance picture's axes.
+    limit_marks: Vec<crate::exceedance::LimitMark>,
     /// "N samples, seed S", for the captions.
     about: String,
 }
@@ -56,7 +58,10 @@ impl Sweep {
             .get("touchdown.scenario")
             .and_then(|s| Scenario::from_toml(s).ok());
         let tips_m = scenario.as_ref().map(|s| s.lander.tips_m());
-        let dampers = scenario.is_some_and(|s| s.damper.enabled);
+        let dampers = scenario.as_ref().is_some_and(|s| s.damper.enabled);
+        let limit_marks = scenario
+            .as_ref()
+            .map_or_else(Vec::new, crate::exceedance::limit_marks);
         Ok(Sweep {
             relative_azimuth: azimuth
                 .iter()
@@ -71,6 +76,7 @@ impl Sweep {
                 .collect(),
             tips_m,
             dampers,
+            limit_marks,
             about: format!(
                 "{}, seed {}",
                 // A file short of its samples: an interrupted sweep's.
@@ -137,7 +143,7 @@ pub(super) fn plot(path: &Path, name: &dyn Fn(&str) -> PathBuf) -> anyhow::Resul
     let quantities = crate::exceedance::gather(&source, s.dampers)?;
     let rows = quantities.len().div_ceil(2) as u32;
     save_png(&exceedance, (1200, 40 + 460 * rows), |root| {
-        super::exceedance::exceedance(root, &quantities, &s.about)
+        super::exceedance::exceedance(root, &quantities, &s.limit_marks, &s.about)
     })?;
     written.push(exceedance);
     Ok(written)

@@ -4,7 +4,8 @@
 
 use super::gather::{Gathered, LOADS};
 use super::gear::GearSection;
-use super::numbers::{Share, Summary};
+use super::ground::GroundSection;
+use super::numbers::{Share, Summary, summaries};
 use super::release::ReleaseSection;
 use super::thrust::ThrustSection;
 use crate::exceedance::DesignValues;
@@ -67,6 +68,8 @@ pub(super) struct Report {
     pub(super) stable_within_limits: Option<Share>,
     /// With dampers or `[limits]`: bottomed dampers and broken limits.
     pub(super) gear: Option<GearSection>,
+    /// On regolith: the footprints' depth and the energy the soil kept.
+    pub(super) ground: Option<GroundSection>,
     /// With `--slope-distribution`: the outcome shares on that terrain.
     pub(super) terrain: Option<Terrain>,
     /// Per sector of downhill azimuth relative to the lander.
@@ -98,6 +101,7 @@ impl Report {
             mut release,
             slopes,
             gear,
+            mut ground,
         } = Gathered::read(&mut file, terrain.is_some())?;
         let meta = file.metadata();
         let total: u64 = counts.iter().sum();
@@ -123,11 +127,7 @@ impl Report {
                 allowable: allowable_slope(s),
             })
             .collect();
-        let loads = loads
-            .iter_mut()
-            .zip(LOADS)
-            .map(|(v, named)| Summary::of(v, named))
-            .collect();
+        let loads = summaries(&mut loads, &LOADS);
         // Their values are summarised: the memory goes to the exceedance's.
         drop((sectors, slopes));
         let dampers = scenario.as_ref().map(|s| s.damper.enabled);
@@ -148,8 +148,9 @@ impl Report {
             outcomes: Outcome::listed(controlled)
                 .map(|o| (o, Share::of(counts[o as usize], total)))
                 .collect(),
-            stable_within_limits: gear.limits.map(|(within, _)| Share::of(within, total)),
+            stable_within_limits: gear.limits.map(|c| Share::of(c.within, total)),
             gear: gear.section(total, scenario.as_ref()),
+            ground: ground.section(),
             terrain,
             allowable,
             loads,

@@ -1,7 +1,9 @@
 //! The rows of a sweep read once for the report: outcome counts, each sector's slopes and
-//! stable samples, the peak loads, and what the gear, thrust and release sections count.
+//! stable samples, the peak loads, and what the gear, ground, thrust and release sections
+//! count.
 
 use super::gear::{Gear, GearColumns};
+use super::ground::{Ground, GroundColumns};
 use super::numbers::Named;
 use super::release::{Release, ReleaseColumns};
 use super::thrust::{Thrust, ThrustColumns};
@@ -46,6 +48,7 @@ pub(super) struct Gathered {
     /// Each sample's slope and outcome, where the report weighs them onto a terrain.
     pub(super) slopes: Vec<(f64, Outcome)>,
     pub(super) gear: Gear,
+    pub(super) ground: Ground,
 }
 
 impl Gathered {
@@ -53,6 +56,7 @@ impl Gathered {
     pub(super) fn read(file: &mut SweepFile, keep_slopes: bool) -> anyhow::Result<Gathered> {
         let legs = file.legs();
         let mut gear = Gear::default();
+        let mut ground = Ground::default();
         let mut counts = [0u64; Outcome::ALL.len()];
         let mut sectors: Vec<Vec<(f64, bool)>> = vec![Vec::new(); SECTORS];
         let mut loads: [Vec<f64>; LOADS.len()] = Default::default();
@@ -66,6 +70,7 @@ impl Gathered {
             let released = ReleaseColumns::of(&b)?;
             let outcomes = b.outcomes()?;
             let gear_columns = GearColumns::of(&b)?;
+            let soil = GroundColumns::of(&b, legs)?;
             let (slope, azimuth, yaw) =
                 (f("slope_deg")?, f("downhill_azimuth_deg")?, f("yaw_deg")?);
             let (acc, acc_z) = (
@@ -98,6 +103,9 @@ impl Gathered {
                     release.push(r, i);
                 }
                 gear.push(&gear_columns, i, o);
+                if let Some(c) = &soil {
+                    ground.push(c, i);
+                }
             }
         }
         Ok(Gathered {
@@ -108,6 +116,7 @@ impl Gathered {
             release,
             slopes,
             gear,
+            ground,
         })
     }
 }

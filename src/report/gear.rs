@@ -5,7 +5,7 @@
 use super::numbers::Share;
 use crate::output::sweep::SweepBatch;
 use crate::reference::Outcome;
-use crate::scenario::{LIMIT_NAMES, Scenario};
+use crate::scenario::{Broken, LIMIT_NAMES, Limits, Scenario};
 use arrow_array::{StringArray, UInt32Array};
 use std::fmt::Write as _;
 
@@ -28,24 +28,40 @@ impl<'a> GearColumns<'a> {
     }
 }
 
+/// The stable samples within `[limits]` and the samples that broke each limit
+/// (`LIMIT_NAMES`), counted: the report's and the sweep's closing summary's alike.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct LimitCounts {
+    /// Stable samples that broke no limit.
+    pub within: u64,
+    /// Samples that broke each limit, in the order of `LIMIT_NAMES`.
+    pub each: [u64; LIMIT_NAMES.len()],
+}
+
+impl LimitCounts {
+    /// Counts `n` samples of outcome `o` that broke the limits `broken`.
+    pub fn add(&mut self, o: Outcome, broken: Broken, n: u64) {
+        self.within += n * u64::from(o == Outcome::Stable && broken == Broken::default());
+        for (i, count) in self.each.iter_mut().enumerate() {
+            *count += n * u64::from(broken.has(i));
+        }
+    }
+}
+
 /// Samples with a bottomed damper, and with `[limits]` the stable samples that broke none
-/// and the samples that broke each limit (`LIMIT_NAMES`), counted over the rows.
+/// and the samples that broke each limit, counted over the rows.
 #[derive(Default)]
 pub(super) struct Gear {
     bottomed: u64,
-    pub(super) limits: Option<(u64, [u64; LIMIT_NAMES.len()])>,
+    pub(super) limits: Option<LimitCounts>,
 }
 
 impl Gear {
     pub(super) fn push(&mut self, c: &GearColumns<'_>, i: usize, o: Outcome) {
         self.bottomed += c.bottomed.map_or(0, |b| u64::from(b.value(i) > 0));
         if let Some(broken) = c.broken {
-            let (within, each) = self.limits.get_or_insert_default();
-            let names = broken.value(i);
-            *within += u64::from(o == Outcome::Stable && names.is_empty());
-            for (count, (name, _)) in each.iter_mut().zip(LIMIT_NAMES) {
-                *count += u64::from(names.split(',').any(|n| n == name));
-            }
+            let counts = self.limits.get_or_insert_default();
+            counts.add(o, Broken::parse(broken.value(i)), 1);
         }
     }
 
@@ -56,30 +72,10 @@ impl Gear {
         if !dampers && limits.is_none() {
             return None;
         }
-        let mut broken = Vec::new();
-        if let (Some(l), Some((_, each))) = (limits, self.limits) {
-            let given = [
-                l.axial_force_n
-                    .map(|x| (x, format!("peak axial strut load above {x} N"))),
-                l.side_force_n
-                    .map(|x| (x, format!("peak side load above {x} N"))),
-                l.acceleration_m_s2
-                    .map(|x| (x, format!("peak CG acceleration above {x} m/s^2"))),
-                l.stroke_margin_m
-                    .map(|x| (x, format!("stroke margin below {x} m, or bottomed"))),
-            ];
-            for ((limit, count), (name, key)) in given.into_iter().zip(each).zip(LIMIT_NAMES) {
-                if let Some((value, text)) = limit {
-                    broken.push(Broken {
-                        name,
-                        key,
-                        value,
-                        text,
-                        samples: Share::of(count, total),
-                    });
-                }
-            }
-        }
+        let broken = match (limits, self.limits) {
+            (Some(l), Some(counts)) => broken_limits(&l, &counts, total),
+            _ => Vec::new(),
+        };
         Some(GearSection {
             bottomed: dampers.then(|| Share::of(self.bottomed, total)),
             broken,
@@ -87,8 +83,50 @@ impl Gear {
     }
 }
 
+/// The limits `l` gives, each with what breaks it in words and the samples of `total`
+/// that broke it (`counts`).
+fn broken_limits(l: &Limits, counts: &LimitCounts, total: u64) -> Vec<BrokenLimit> {
+    let given = [
+        l.axial_force_n
+            .map(|x| (x, format!("peak axial strut load above {x} N"))),
+        l.side_force_n
+            .map(|x| (x, format!("peak side load above {x} N"))),
+        l.acceleration_m_s2
+            .map(|x| (x, format!("peak CG acceleration above {x} m/s^2"))),
+        l.stroke_margin_m
+            .map(|x| (x, format!("stroke margin below {x} m, or bottomed"))),
+    ];
+    given
+        .into_iter()
+        .zip(counts.each)
+        .zip(LIMIT_NAMES)
+        .filter_map(|((limit, count), (name, key))| {
+            limit.map(|(value, text)| BrokenLimit {
+                name,
+                key,
+                value,
+                text,
+                samples: Share::of(count, total),
+            })
+        })
+        .collect()
+}
+
+/// The rows a sweep's closing summary adds for the limits `l`, as the report words them:
+/// "stable within limits" and its samples, then each limit given, "broke `name`: what
+/// breaks it", and the samples that broke it (`counts`).
+#[must_use]
+pub fn limit_rows(l: &Limits, counts: &LimitCounts) -> (u64, Vec<(String, u64)>) {
+    // The share is not read here: any total above 0 does.
+    let rows = broken_limits(l, counts, 1)
+        .into_iter()
+        .map(|b| (b.label(), b.samples.count))
+        .collect();
+    (counts.within, rows)
+}
+
 /// A limit of `[limits]` and the samples that broke it.
-pub(super) struct Broken {
+pub(super) struct BrokenLimit {
     /// Its name in `limits_broken` (`axial_force`).
     pub(super) name: &'static str,
     /// Its key in `[limits]` (`axial_force_n`).
@@ -101,12 +139,19 @@ pub(super) struct Broken {
     pub(super) samples: Share,
 }
 
+impl BrokenLimit {
+    /// Its row's label: "broke `name`: what breaks it".
+    fn label(&self) -> String {
+        format!("broke `{}`: {}", self.name, self.text)
+    }
+}
+
 /// The gear section of a sweep with dampers or `[limits]`.
 pub(super) struct GearSection {
     /// With dampers: the samples in which a damper bottomed.
     pub(super) bottomed: Option<Share>,
     /// The limits given, each with the samples that broke it.
-    pub(super) broken: Vec<Broken>,
+    pub(super) broken: Vec<BrokenLimit>,
 }
 
 impl GearSection {
@@ -120,7 +165,7 @@ impl GearSection {
             bottomed.row(t, "a damper bottomed");
         }
         for b in &self.broken {
-            b.samples.row(t, &format!("broke `{}`: {}", b.name, b.text));
+            b.samples.row(t, &b.label());
         }
     }
 }

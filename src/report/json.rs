@@ -121,6 +121,7 @@ pub(super) fn json(r: &Report) -> String {
         "outcomes": keyed(r.outcomes.iter().map(|(o, s)| (o.name(), share(s)))),
         "stable_within_limits": r.stable_within_limits.as_ref().map(share),
         "gear": r.gear.as_ref().map(gear),
+        "regolith": r.ground.as_ref().map(|g| keyed(g.quantities.iter().map(|q| (q.key, summary(q))))),
         "terrain": r.terrain.as_ref().map(terrain),
         "allowable_slope_rule": object! {
             "stable_share": ALLOWABLE_STABLE,

@@ -13,6 +13,9 @@ pub(super) fn markdown(r: &Report) -> String {
     if let Some(gear) = &r.gear {
         gear.write(&mut t);
     }
+    if let Some(ground) = &r.ground {
+        ground.write(&mut t);
+    }
     if let Some(terrain) = &r.terrain {
         let _ = write!(
             t,

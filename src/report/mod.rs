@@ -3,7 +3,8 @@
 //! downhill azimuth relative to the lander, the peak loads and their exceedance, (with
 //! thrusters) the propellant and firings, and (with a descent) the state the descent
 //! released the lander in; with dampers or `[limits]`, the samples that bottomed a damper
-//! or broke a limit (`gear`); with a `--slope-distribution`, the outcome shares on that
+//! or broke a limit (`gear`); on regolith, the footprints' depth and the energy the soil
+//! kept (`ground`); with a `--slope-distribution`, the outcome shares on that
 //! terrain.
 //!
 //! The folder: `gather` reads the rows once (the sections' own columns and counts in
@@ -13,11 +14,14 @@
 mod data;
 mod gather;
 mod gear;
+mod ground;
 mod json;
 mod markdown;
 mod numbers;
 mod release;
 mod thrust;
+
+pub use gear::{LimitCounts, limit_rows};
 
 use crate::output::sweep::SweepSource;
 use crate::weighting::SlopeDistribution;

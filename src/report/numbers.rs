@@ -107,3 +107,29 @@ impl Summary {
         }
     }
 }
+
+/// The summaries of `values`, each of the quantity of `named` beside it (each sorted by it).
+pub(super) fn summaries(values: &mut [Vec<f64>], named: &[Named]) -> Vec<Summary> {
+    values
+        .iter_mut()
+        .zip(named)
+        .map(|(v, &named)| Summary::of(v, named))
+        .collect()
+}
+
+/// The table of `quantities`: each one's mean, smallest, median, 99th percentile and
+/// largest value, under its header.
+pub(super) fn write_summaries(t: &mut String, quantities: &[Summary]) {
+    let _ = writeln!(
+        t,
+        "| quantity | mean | smallest | median | 99th percentile | largest |\n\
+         |---|---:|---:|---:|---:|---:|"
+    );
+    for q in quantities {
+        let _ = writeln!(
+            t,
+            "| {} ({}) | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |",
+            q.name, q.unit, q.mean, q.min, q.median, q.p99, q.max
+        );
+    }
+}

@@ -1,7 +1,7 @@
 //! The report's section on a sweep with a descent: how many landers the descent law
 //! released, and their release time, footpad height and velocity.
 
-use super::numbers::{Named, Summary};
+use super::numbers::{Named, Summary, summaries, write_summaries};
 use crate::output::sweep::SweepBatch;
 use arrow_array::Float64Array;
 use std::fmt::Write as _;
@@ -81,11 +81,7 @@ impl Release {
         let quantities = if released == 0 {
             Vec::new()
         } else {
-            self.values
-                .iter_mut()
-                .zip(QUANTITIES)
-                .map(|(v, named)| Summary::of(v, named))
-                .collect()
+            summaries(&mut self.values, &QUANTITIES)
         };
         Some(ReleaseSection {
             samples: self.samples,
@@ -121,18 +117,7 @@ impl ReleaseSection {
                 "; in the other {first} contact came first (`release_time_s` NaN)"
             );
         }
-        let _ = writeln!(
-            t,
-            ". Of the released (the `release_*` columns; velocity in I):\n\n\
-             | quantity | mean | smallest | median | 99th percentile | largest |\n\
-             |---|---:|---:|---:|---:|---:|"
-        );
-        for q in &self.quantities {
-            let _ = writeln!(
-                t,
-                "| {} ({}) | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |",
-                q.name, q.unit, q.mean, q.min, q.median, q.p99, q.max
-            );
-        }
+        t.push_str(". Of the released (the `release_*` columns; velocity in I):\n\n");
+        write_summaries(t, &self.quantities);
     }
 }

@@ -1,7 +1,7 @@
 //! The report's section on a sweep with a control loop: the propellant, thruster on-time,
 //! firings and hold-down impulse over the samples, and the mean propellant per outcome.
 
-use super::numbers::{Named, Summary};
+use super::numbers::{Named, Summary, summaries};
 use crate::output::sweep::SweepBatch;
 use crate::reference::Outcome;
 use arrow_array::{Float64Array, UInt32Array};
@@ -77,12 +77,7 @@ impl Thrust {
             samples: self.values[0].len(),
             fired: self.values[2].iter().filter(|&&f| f > 0.0).count(),
             propellant_kg: self.values[0].iter().sum(),
-            quantities: self
-                .values
-                .iter_mut()
-                .zip(QUANTITIES)
-                .map(|(v, named)| Summary::of(v, named))
-                .collect(),
+            quantities: summaries(&mut self.values, &QUANTITIES),
             by_outcome: Outcome::ALL
                 .iter()
                 .zip(&self.by_outcome)

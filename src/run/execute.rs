@@ -6,7 +6,8 @@ use super::workers::{Interrupted, shown, tell};
 use crate::output::format::BATCH_ROWS;
 use crate::output::sweep::{Made, SweepInfo, SweepWriter};
 use crate::reference::{Model, Outcome};
-use crate::scenario::Scenario;
+use crate::report::LimitCounts;
+use crate::scenario::{Broken, Scenario};
 use crate::sweep::Stretches;
 use std::ops::Range;
 
@@ -45,6 +46,9 @@ pub struct Executed {
     pub serial_share: f64,
     /// Rows per outcome, in the order of `Outcome::ALL`.
     pub counts: [u64; Outcome::ALL.len()],
+    /// With `[limits]`: the rows within them and the rows that broke each (boxed, so that
+    /// a run without limits carries one pointer).
+    pub limits: Option<Box<LimitCounts>>,
     /// Time steps summed over the rows in the file (kept and computed).
     pub steps: u64,
     /// Samples of this run that never touched the surface.
@@ -87,11 +91,17 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         ));
     }
     let mut counts = [0u64; Outcome::ALL.len()];
+    let mut limits = scenario.limits.map(|_| Box::new(LimitCounts::default()));
     let mut steps = 0u64;
     if let Some(from) = &plan.resume {
         let (kept_counts, kept_steps) = from.copy_kept_rows(range.start, &mut writer)?;
-        for (o, c) in Outcome::ALL.iter().zip(&mut counts) {
-            *c += kept_counts.get(o.name()).copied().unwrap_or(0);
+        for ((outcome, broken), &n) in &kept_counts {
+            if let Some(o) = Outcome::from_name(outcome) {
+                counts[o as usize] += n;
+                if let Some(l) = &mut limits {
+                    l.add(o, Broken::parse(broken), n);
+                }
+            }
         }
         steps += kept_steps;
     }
@@ -140,6 +150,12 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
     for (c, t) in counts.iter_mut().zip(tally.counts) {
         *c += t;
     }
+    if let Some(l) = &mut limits {
+        l.within += tally.limits.within;
+        for (c, t) in l.each.iter_mut().zip(tally.limits.each) {
+            *c += t;
+        }
+    }
     Ok(Executed {
         rows,
         computed: tally.rows,
@@ -147,6 +163,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         stats: ran.stats,
         serial_share: ran.serial_share(),
         counts,
+        limits,
         steps: steps + tally.steps,
         untouched: tally.untouched,
         untouched_tipped: tally.untouched_tipped,
@@ -170,6 +187,9 @@ struct Tally {
     untouched_tipped: u64,
     untouched_tipped_slope_deg: f64,
     untouched_descending: u64,
+    /// The stable rows within `[limits]` and the rows that broke each (where the scenario
+    /// has limits).
+    limits: LimitCounts,
 }
 
 impl Default for Tally {
@@ -182,6 +202,7 @@ impl Default for Tally {
             untouched_tipped: 0,
             untouched_tipped_slope_deg: f64::INFINITY,
             untouched_descending: 0,
+            limits: LimitCounts::default(),
         }
     }
 }
@@ -193,6 +214,9 @@ impl Tally {
         for r in rows {
             t.rows += 1;
             t.counts[r.summary.outcome as usize] += 1;
+            if let Some(broken) = r.summary.limits_broken {
+                t.limits.add(r.summary.outcome, broken, 1);
+            }
             t.steps += r.summary.steps;
             let never = r.summary.first_contact_s.is_none();
             t.untouched += u64::from(never);
@@ -225,6 +249,10 @@ impl Tally {
             .untouched_tipped_slope_deg
             .min(o.untouched_tipped_slope_deg);
         self.untouched_descending += o.untouched_descending;
+        self.limits.within += o.limits.within;
+        for (c, k) in self.limits.each.iter_mut().zip(o.limits.each) {
+            *c += k;
+        }
     }
 }
 

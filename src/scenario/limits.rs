@@ -68,6 +68,18 @@ impl Broken {
             .collect();
         names.join(",")
     }
+
+    /// The set that `names` (as `names` writes it) names; a name it does not know is
+    /// not in it.
+    #[must_use]
+    pub fn parse(names: &str) -> Broken {
+        let bits = LIMIT_NAMES
+            .iter()
+            .enumerate()
+            .filter(|(_, (name, _))| names.split(',').any(|n| n == *name))
+            .fold(0, |b, (i, _)| b | (1 << i));
+        Broken(bits)
+    }
 }
 
 impl Limits {
@@ -110,7 +122,7 @@ impl Limits {
 
 #[cfg(test)]
 mod tests {
-    use super::{Limits, Loads};
+    use super::{Broken, Limits, Loads};
 
     #[test]
     fn broken_limits_are_named_in_order() {
@@ -135,5 +147,13 @@ mod tests {
             ..loads
         };
         assert_eq!(limits.broken(&within).names(), "");
+    }
+
+    #[test]
+    fn names_read_back_to_the_set() {
+        for bits in 0..16 {
+            let b = Broken(bits);
+            assert_eq!(Broken::parse(&b.names()), b);
+        }
     }
 }

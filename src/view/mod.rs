@@ -322,6 +322,13 @@ fn series(o: &mut String, scene: &Scene, times: &[f64], resampled: bool) {
         key(o, name);
         numbers(o, times.iter().map(|t| scene.trace.value(name, *t)));
     }
+    // On regolith each leg's sinkage (`Scene::sinkage_m`), for its chart.
+    if scene.on_regolith() {
+        for leg in 0..scene.trace.legs {
+            key(o, &format!("leg{leg}_sinkage_m"));
+            numbers(o, times.iter().map(|t| scene.sinkage_m(leg, *t)));
+        }
+    }
     for name in &peaks {
         key(o, name);
         numbers(
@@ -397,12 +404,23 @@ fn charts(o: &mut String, scene: &Scene) {
         "normal force per leg (N)",
         &per_leg("normal_force_n", 1.0),
     );
-    o.push(',');
-    chart(
-        o,
-        "damper stroke per leg (mm)",
-        &per_leg("stroke_m", 1000.0),
-    );
+    // Only what the lander has: a stroke with dampers, a sinkage on regolith.
+    if scene.model.honeycomb.is_some() {
+        o.push(',');
+        chart(
+            o,
+            "damper stroke per leg (mm)",
+            &per_leg("stroke_m", 1000.0),
+        );
+    }
+    if scene.on_regolith() {
+        o.push(',');
+        chart(
+            o,
+            "footpad sinkage per leg (mm)",
+            &per_leg("sinkage_m", 1000.0),
+        );
+    }
     // The thrusters in charts of at most four, as the legs: a chart's legend is one row
     // across it, and twelve entries there showed five.
     let n = scene.trace.thrusters;

@@ -11,6 +11,7 @@ mod at_rest;
 mod bottoming;
 mod limits;
 mod peaks;
+mod shown;
 
 /// An Arrow IPC file (a sweep or a trace) read whole, its columns by name, nulls kept.
 struct Columns {
