@@ -18,7 +18,46 @@
 use crate::scenario::Dist;
 use crate::scenario::Sample;
 use crate::scenario::stream_name;
-use crate::stats::{Allowable, MIN_SAMPLES, allowable_of_counts};
+use crate::stats::{
+    Allowable, MIN_SAMPLES, SECTOR_DEG, SECTORS, allowable_of_counts, relative_azimuth_deg,
+    sector_of,
+};
+
+/// `value` in `unit`, as messages and reports write it: `0.5 deg`, or the bare number
+/// where the unit is "1" (a share, a coefficient).
+#[must_use]
+pub fn with_unit(value: impl std::fmt::Display, unit: &str) -> String {
+    if unit == "1" {
+        value.to_string()
+    } else {
+        format!("{value} {unit}")
+    }
+}
+
+/// The sectors of relative azimuth (`stats::sector_of`) that samples drawn from
+/// `downhill_azimuth` and `yaw` can fall in: every sector unless both are bounded and the
+/// azimuth relative to the yaw spans less than a turn.
+#[must_use]
+pub fn reachable_sectors(downhill_azimuth: Dist, yaw: Dist) -> [bool; SECTORS] {
+    if let (Dist::Fixed(d), Dist::Fixed(y)) = (downhill_azimuth, yaw) {
+        let k = sector_of(relative_azimuth_deg(d, y));
+        return std::array::from_fn(|i| i == k);
+    }
+    let (d, y) = (downhill_azimuth.support(), yaw.support());
+    let (low, high) = (d.0 - y.1, d.1 - y.0);
+    let width = high - low;
+    if width.is_nan() || width >= 360.0 {
+        return [true; SECTORS];
+    }
+    let start = low.rem_euclid(360.0);
+    let end = start + width;
+    std::array::from_fn(|k| {
+        let (a, b) = (k as f64 * SECTOR_DEG, (k + 1) as f64 * SECTOR_DEG);
+        [0.0, 360.0]
+            .iter()
+            .any(|turn| a + turn <= end && start < b + turn)
+    })
+}
 
 /// The samples of one sector from one round: slopes drawn from the scenario's slope
 /// distribution conditioned on `[slope_min, upper]`, and whether each was stable.
@@ -209,6 +248,31 @@ mod tests {
     use crate::stats::allowable_slope;
     use rand_core::SeedableRng;
     use rand_xoshiro::Xoshiro256PlusPlus;
+
+    #[test]
+    fn the_sectors_a_fixed_or_narrow_azimuth_reaches() {
+        let uniform = |min, max| Dist::Uniform { min, max };
+        let sectors = |d, y| -> Vec<usize> {
+            let r = reachable_sectors(d, y);
+            (0..SECTORS).filter(|&k| r[k]).collect()
+        };
+        assert_eq!(sectors(Dist::Fixed(100.0), Dist::Fixed(0.0)), [2]);
+        assert_eq!(sectors(Dist::Fixed(10.0), Dist::Fixed(30.0)), [7]);
+        assert_eq!(sectors(uniform(0.0, 100.0), Dist::Fixed(0.0)), [0, 1, 2]);
+        // Across a turn: 350 to 370 deg relative to the yaw.
+        assert_eq!(sectors(uniform(340.0, 360.0), uniform(-10.0, 0.0)), [0, 7]);
+        assert_eq!(
+            sectors(uniform(0.0, 360.0), Dist::Fixed(0.0)).len(),
+            SECTORS
+        );
+        let normal = Dist::Normal {
+            mean: 0.0,
+            sd: 1.0,
+            min: f64::NEG_INFINITY,
+            max: f64::INFINITY,
+        };
+        assert_eq!(sectors(normal, Dist::Fixed(0.0)).len(), SECTORS);
+    }
 
     #[test]
     fn one_round_at_the_top_is_the_reports_allowable_slope() {

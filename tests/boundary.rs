@@ -162,7 +162,10 @@ fn boundary_refuses_bad_input() {
         bad_args(
             "tolerance as wide as the slope range",
             &["--tolerance", "1000"],
-            &["--tolerance 1000: less than the width of the slope range"],
+            &[
+                "--tolerance 1000 deg: must be less than the width of the range of \
+                 inputs.slope_deg, 45 deg (from 0 to 45 deg)",
+            ],
         ),
         bad_args(
             "negative tolerance",

@@ -223,3 +223,127 @@ fn boundary_refuses_an_input_it_cannot_search() {
         .collect();
     assert!(problems.is_empty(), "{}", problems.join("\n\n"));
 }
+
+/// A fixed downhill azimuth (and yaw) puts every sample in one sector: only it is searched
+/// and shown, each candidate drawn is a sample run, the default tolerance is in the input's
+/// unit (1/90 of its range), and `--json` and `--csv` give the same sector as the report.
+#[test]
+fn a_fixed_azimuth_searches_its_one_sector_and_the_search_reads_as_data() {
+    let dir = TempDir::new("boundary-fixed-azimuth");
+    dir.write(
+        "s.toml",
+        &SCENARIO.replace(
+            "slope_deg = 10.0\n",
+            "slope_deg = 10.0\ndownhill_azimuth_deg = 100.0\n",
+        ),
+    );
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "boundary",
+            "--scenario",
+            "s.toml",
+            "--input",
+            INPUT,
+            "--batch",
+            "200",
+            "--max-samples-per-sector",
+            "600",
+            "--quiet",
+        ];
+        args.extend(extra);
+        let run = touchdown(dir.path(), &args);
+        run.assert_ok();
+        run.stdout
+    };
+    let markdown = run(&[]);
+    assert!(
+        markdown.contains(&format!("tolerance {} m/s,", 0.5 / 90.0)),
+        "{markdown}"
+    );
+    assert!(
+        markdown.contains("put every sample in one of the 8 sectors, those below; the other 7"),
+        "{markdown}"
+    );
+    let rows: Vec<&str> = markdown
+        .lines()
+        .filter(|l| l.starts_with("| ") && l.contains(" deg |"))
+        .collect();
+    assert_eq!(rows.len(), 1, "{markdown}");
+    assert!(rows[0].starts_with("| 90–135 deg | 600 |"), "{markdown}");
+    assert!(!markdown.contains("too few samples (0)"), "{markdown}");
+    assert!(
+        markdown.contains("600 samples simulated (600 candidates drawn)"),
+        "{markdown}"
+    );
+    let (value, interval) = found_rows(&markdown)[0];
+
+    let json: serde_json::Value = serde_json::from_str(&run(&["--json"])).unwrap();
+    assert_eq!(json["input"], INPUT);
+    assert_eq!(json["unit"], "m/s");
+    assert_eq!(json["samples"], 600);
+    let sectors = json["sectors"].as_array().unwrap();
+    assert_eq!(sectors.len(), 1, "{json}");
+    let sector = &sectors[0];
+    assert_eq!(sector["azimuth_min_deg"], 90.0);
+    assert_eq!(sector["samples"], 600);
+    let rounded = |key: &str| {
+        sector[key]
+            .as_f64()
+            .map(|x| format!("{x:.3}").parse::<f64>().unwrap())
+    };
+    assert_eq!(rounded("allowable"), value, "{json}");
+    assert_eq!(
+        rounded("interval_low").zip(rounded("interval_high")),
+        interval,
+        "{json}"
+    );
+
+    let csv = run(&["--csv"]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        format!(
+            "azimuth_min_deg,azimuth_max_deg,samples,rounds,result,allowable_{INPUT},\
+             allowable_{INPUT}_low,allowable_{INPUT}_high,stopped"
+        )
+    );
+    assert_eq!(lines.len(), 2, "{csv}");
+    let cells: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(&cells[..3], &["90", "135", "600"]);
+    assert_eq!(cells[4], sector["result"].as_str().unwrap());
+    let number = |c: &str| c.parse::<f64>().ok();
+    assert_eq!(number(cells[5]), sector["allowable"].as_f64());
+    assert_eq!(number(cells[7]), sector["interval_high"].as_f64());
+    assert_eq!(cells[8], sector["stopped"].as_str().unwrap());
+}
+
+/// A tolerance as wide as the range of a dimensionless input says it must be less than the
+/// range, with no unit "1".
+#[test]
+fn a_tolerance_too_wide_says_what_it_must_be() {
+    let dir = TempDir::new("boundary-tolerance");
+    dir.write(
+        "rocks.toml",
+        "[surface.rocks]\nabundance = { dist = \"uniform\", min = 0.0, max = 0.3 }\n",
+    );
+    let run = touchdown(
+        dir.path(),
+        &[
+            "boundary",
+            "--scenario",
+            "rocks.toml",
+            "--input",
+            "abundance",
+            "--tolerance",
+            "0.5",
+        ],
+    );
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(
+        run.stderr.contains(
+            "--tolerance 0.5: must be less than the width of the range of \
+             surface.rocks.abundance, 0.3 (from 0 to 0.3), or every sector stops"
+        ),
+        "{run}"
+    );
+}

@@ -332,6 +332,22 @@ const BAD_INPUTS: &[BadInput] = &[
         &["--out", "."],
         &["output path \".\"", "names no file"],
     ),
+    // Limits that every sample breaks: a stroke margin of the whole stroke or more.
+    bad_scenario(
+        "stroke margin beyond the stroke",
+        "[damper]\nenabled = true\n[limits]\nstroke_margin_m = 1.0\n",
+        &[
+            "`limits.stroke_margin_m` = 1 m",
+            "less than the damper's usable stroke, 0.05 m (damper.usable_stroke_m)",
+            "every sample that strokes at all would break it",
+        ],
+    ),
+    bad_scenario(
+        "stroke margin of two stages' whole stroke",
+        "[damper]\nenabled = true\nstages = [{ stroke_m = 0.02, crush_strength_psi = 50.0 }, \
+         { stroke_m = 0.03, crush_strength_psi = 90.0 }]\n[limits]\nstroke_margin_m = 0.05\n",
+        &["the 2 damper.stages' stroke_m summed"],
+    ),
     // A bad scenario is refused before the output file is made, wherever it goes.
     BadInput {
         name: "bad scenario with an explicit output path",

@@ -643,3 +643,26 @@ fn panels_too_many_for_one_command_are_refused_not_aborted() {
     );
     assert_eq!(dir.entries(), before);
 }
+
+/// A column with no value in any sample (the stroke margin of rigid legs: null without
+/// dampers) is refused naming it, not drawn as an empty picture.
+#[test]
+fn a_column_without_values_is_refused_not_drawn_empty() {
+    let dir = TempDir::new("envelope-empty-column");
+    sweep(&dir, SHORT, "100", "s.arrow");
+    for (flag, expect) in [
+        ("--x", "--x leg1_stroke_margin_m: the column has no value"),
+        ("--y", "--y leg1_stroke_margin_m: the column has no value"),
+    ] {
+        let run = touchdown(
+            dir.path(),
+            &["envelope", "s.arrow", flag, "leg1_stroke_margin_m"],
+        );
+        assert_eq!(run.code, Some(2), "{run}");
+        assert!(
+            run.stderr.contains(expect) && run.stderr.contains("samples of s.arrow that touched"),
+            "{run}"
+        );
+        assert!(!dir.join("s-envelope.png").exists(), "{run}");
+    }
+}

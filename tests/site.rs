@@ -795,3 +795,93 @@ fn a_long_gravity_says_how_long_before_it_starts() {
         "{told}"
     );
 }
+
+/// Messages name the actual cause: a coordinate that overflows (at its vertex), a density
+/// that overflows the mass (not the spin), a plate header of numbers that are no counts (not
+/// an OBJ statement), a slope window other than the map's sweep's (not just "its
+/// scenario"), and a spin period of 1e300 h shown as such, not as 301 digits.
+#[test]
+fn messages_name_the_actual_cause() {
+    let dir = TempDir::new("site-causes");
+    let sphere = obj(&icosphere(RADIUS_M, 1));
+    let first_vertex = sphere.lines().find(|l| l.starts_with("v ")).unwrap();
+    let far = sphere.replacen(first_vertex, "v 0 0 1e300", 1);
+    dir.write("far.obj", &far);
+    let run = run_site(
+        &dir,
+        &site_args("far.obj", "m", "5", "200", "far", &["--quiet"]),
+    );
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(
+        run.stderr
+            .contains("far.obj: shape model refused: vertex 1 (of facet ")
+            && run.stderr.contains("[0.0, 0.0, 1e300] m overflows"),
+        "{run}"
+    );
+    assert!(!run.stderr.contains("degenerate"), "{run}");
+
+    dir.write("sphere.obj", &sphere);
+    let mut args = site_args("sphere.obj", "m", "5", "200", "dense", &["--quiet"]);
+    args[5] = "1e300".into();
+    let run = run_site(&dir, &args);
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(
+        run.stderr
+            .contains("--density 1e300 kg/m^3: the body's mass")
+            && run.stderr.contains("overflows"),
+        "{run}"
+    );
+    assert!(!run.stderr.contains("spin"), "{run}");
+
+    dir.write("neg.tab", "-5 320\n1 0 0 0\n");
+    let run = run_site(
+        &dir,
+        &site_args("neg.tab", "m", "5", "200", "neg", &["--quiet"]),
+    );
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(
+        run.stderr
+            .contains("neg.tab, line 1: '-5' is not a count of vertices"),
+        "{run}"
+    );
+
+    let run = run_sphere(&dir, "200", "map", &["--quiet"]);
+    run.assert_ok();
+    let run = run_sphere(&dir, "200", "map", &["--quiet", "--slope-window", "2"]);
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(
+        run.stderr.contains(
+            "is not this map's sweep: it differs in its scenario's inputs.slope_deg (the slopes \
+             drawn, from 0 to the steepest facet's plus --slope-window)"
+        ),
+        "{run}"
+    );
+
+    let run = run_site(
+        &dir,
+        &site_args("sphere.obj", "m", "1e300", "200", "slow", &["--quiet"]),
+    );
+    run.assert_ok();
+    let summary = std::fs::read_to_string(dir.join("slow/site.md")).unwrap();
+    assert!(
+        summary.contains("| spin | period 1e300 h about"),
+        "{summary}"
+    );
+    assert!(!summary.contains("0000000000"), "{summary}");
+}
+
+/// The top-level help names both formats `site` reads.
+#[test]
+fn the_help_names_the_formats_site_reads() {
+    let run = touchdown(std::path::Path::new("."), &["--help"]);
+    run.assert_ok();
+    let site = run
+        .stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("site "))
+        .unwrap();
+    assert!(
+        site.contains("Wavefront OBJ file, or a vertex-facet plate file: PDS .tab, SBMT .plt"),
+        "{site}"
+    );
+}

@@ -36,6 +36,7 @@ mod release_state;
 mod report;
 mod report_json;
 mod scenario_fuzz;
+mod scenario_keys;
 mod scenarios;
 mod sensitivity;
 mod shape;

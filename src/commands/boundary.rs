@@ -2,8 +2,10 @@
 //! adaptive sampling (`run::boundary`), and told as Markdown; or the allowable value of
 //! another drawn input (`--input`).
 
+use super::boundary_data::{About, searched};
 use super::flags::{Threads, parse_count, parse_seed};
 use super::print::print_out;
+use crate::boundary::with_unit;
 use crate::run::boundary::{Search, Settings, search};
 use crate::scenario::{Design, Dist, Scenario, VALUES, value_dists, value_name, value_unit};
 use crate::stats::{Allowable, SECTOR_DEG};
@@ -27,14 +29,10 @@ pub struct BoundaryArgs {
     #[arg(long, value_name = "NAME", default_value = "slope_deg")]
     pub input: String,
     /// A sector is finished once its 95 % interval is at most this wide, in the input's
-    /// unit (deg for the slope).
-    #[arg(
-        long,
-        value_name = "DEG",
-        default_value = "0.5",
-        allow_negative_numbers = true
-    )]
-    pub tolerance: f64,
+    /// unit: by default 0.5 deg for the slope, and for another input 1/90 of its range (as
+    /// 0.5 deg is of slopes from 0 to 45 deg).
+    #[arg(long, value_name = "WIDTH", allow_negative_numbers = true)]
+    pub tolerance: Option<f64>,
     /// Samples per unfinished sector per round.
     #[arg(long, value_name = "N", default_value = "2000", value_parser = parse_count, allow_negative_numbers = true)]
     pub batch: u64,
@@ -47,19 +45,32 @@ pub struct BoundaryArgs {
     /// No progress on stderr (there is none either when stderr is not a terminal).
     #[arg(long)]
     pub quiet: bool,
+    /// The search as one JSON document on stdout (the same numbers, unrounded) instead of
+    /// Markdown.
+    #[arg(long, conflicts_with = "csv")]
+    pub json: bool,
+    /// The sectors as CSV on stdout, one row each (the same numbers, unrounded), instead of
+    /// Markdown.
+    #[arg(long)]
+    pub csv: bool,
 }
 
 /// Runs `touchdown boundary`.
 pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
     use std::io::IsTerminal;
     let started = std::time::Instant::now();
-    if !(args.tolerance > 0.0 && args.tolerance.is_finite()) {
+    if let Some(tolerance) = args.tolerance
+        && !(tolerance > 0.0 && tolerance.is_finite())
+    {
+        let unit = (0..VALUES)
+            .find(|&k| value_name(k) == args.input)
+            .map(value_unit);
         bail!(
-            "--tolerance {}: must be a width in {} above 0",
-            args.tolerance,
-            (0..VALUES)
-                .find(|&k| value_name(k) == args.input)
-                .map_or("the input's unit", value_unit)
+            "--tolerance {tolerance}: must be a width above 0{}",
+            match unit {
+                Some("1") | None => String::new(),
+                Some(unit) => format!(", in {unit}"),
+            }
         );
     }
     if args.batch == 0 {
@@ -79,10 +90,25 @@ pub fn run(args: &BoundaryArgs) -> anyhow::Result<()> {
     };
     let progress = !args.quiet && std::io::stderr().is_terminal();
     let found = search(scenario, &settings, args.threads.threads, progress)?;
-    print_out(
-        "the search's report",
-        &markdown(args, seed, &found, started),
-    )
+    let about = About {
+        scenario: args.scenario.as_ref().map_or_else(
+            || "the default scenario".to_string(),
+            |p| p.display().to_string(),
+        ),
+        seed,
+        settings,
+        seconds: started.elapsed().as_secs_f64(),
+    };
+    if args.json {
+        print_out(
+            "the search's JSON",
+            &super::boundary_data::json(&about, &found),
+        )
+    } else if args.csv {
+        print_out("the search's CSV", &super::boundary_data::csv(&found))
+    } else {
+        print_out("the search's report", &markdown(&about, &found))
+    }
 }
 
 /// The position in `Sample::values` of the input named `name`, refused (naming those the
@@ -107,25 +133,22 @@ fn input_of(scenario: &Scenario, name: &str) -> anyhow::Result<usize> {
 }
 
 /// The search's report: what ran, and the allowable slope of each sector.
-fn markdown(args: &BoundaryArgs, seed: u64, found: &Search, started: std::time::Instant) -> String {
-    let name = args.scenario.as_ref().map_or_else(
-        || "the default scenario".to_string(),
-        |p| p.display().to_string(),
-    );
+fn markdown(about: &About, found: &Search) -> String {
+    let name = &about.scenario;
     let slope = found.input == 0;
     let (input, unit) = (value_name(found.input), value_unit(found.input));
     let mut t = String::new();
     let _ = writeln!(t, "# touchdown boundary: {name}\n");
     let _ = writeln!(
         t,
-        "Seed {}, {input} = {}, tolerance {} {unit}, batch {} per sector, at most {} samples \
+        "Seed {}, {input} = {}, tolerance {}, batch {} per sector, at most {} samples \
          per sector{}. {} samples simulated ({} candidates drawn) in \
          {:.1} s.\n",
-        seed,
+        about.seed,
         found.dist.toml(),
-        args.tolerance,
-        args.batch,
-        args.max_samples_per_sector,
+        with_unit(found.tolerance, unit),
+        about.settings.batch,
+        about.settings.max_samples_per_sector,
         if found.design == Design::Independent {
             ""
         } else {
@@ -133,8 +156,23 @@ fn markdown(args: &BoundaryArgs, seed: u64, found: &Search, started: std::time::
         },
         found.total,
         found.candidates,
-        started.elapsed().as_secs_f64()
+        about.seconds
     );
+    let reached = searched(found).count();
+    if reached < found.sectors.len() {
+        let _ = writeln!(
+            t,
+            "The scenario's downhill azimuth and yaw put every sample in {} of the {} \
+             sectors, those below; the other {} get none and are not shown.\n",
+            if reached == 1 {
+                "one".to_string()
+            } else {
+                reached.to_string()
+            },
+            found.sectors.len(),
+            found.sectors.len() - reached
+        );
+    }
     if slope {
         let _ = writeln!(
             t,
@@ -143,11 +181,16 @@ fn markdown(args: &BoundaryArgs, seed: u64, found: &Search, started: std::time::
              end of its interval so far, and the interval pools all its rounds.\n"
         );
     } else {
+        let in_unit = if unit == "1" {
+            String::new()
+        } else {
+            format!(", in {unit}")
+        };
         let _ = writeln!(
             t,
             "## Allowable {input}\n\nThe largest {input} with at least 99 % of the samples at \
              or below it stable (the rule of `touchdown report`'s allowable slope), per sector \
-             of downhill azimuth relative to the lander, in {unit}; each round drew a sector's \
+             of downhill azimuth relative to the lander{in_unit}; each round drew a sector's \
              {input} below the upper end of its interval so far, and the interval pools all its \
              rounds.\n"
         );
@@ -159,7 +202,7 @@ fn markdown(args: &BoundaryArgs, seed: u64, found: &Search, started: std::time::
          |---|---:|---:|---:|---:|---|"
     );
     let min = found.dist.support().0;
-    for (k, s) in found.sectors.iter().enumerate() {
+    for (k, s) in searched(found) {
         let (cell, interval) = if slope {
             (s.allowable.cell(), s.allowable.interval_cell())
         } else {
@@ -186,7 +229,9 @@ fn value_cells(allowable: Allowable, min: f64, unit: &str) -> (String, String) {
         Allowable::TooFewSamples(_) | Allowable::NoSlope { .. } => {
             let cell = allowable.cell().replace("no slope", "no value");
             let interval = match allowable {
-                Allowable::NoSlope { below_deg } => format!("{min:.3}–{below_deg:.3} {unit}"),
+                Allowable::NoSlope { below_deg } => {
+                    format!("{min:.3}–{}", with_unit(format!("{below_deg:.3}"), unit))
+                }
                 _ => allowable.interval_cell(),
             };
             (cell, interval)
@@ -196,8 +241,12 @@ fn value_cells(allowable: Allowable, min: f64, unit: &str) -> (String, String) {
             low_deg,
             high_deg,
         } => (
-            format!("{slope_deg:.3} {unit}"),
-            format!("{:.3}–{high_deg:.3} {unit}", low_deg.max(min)),
+            with_unit(format!("{slope_deg:.3}"), unit),
+            format!(
+                "{:.3}–{}",
+                low_deg.max(min),
+                with_unit(format!("{high_deg:.3}"), unit)
+            ),
         ),
     }
 }

@@ -3,6 +3,7 @@
 
 pub mod animate;
 pub mod boundary;
+mod boundary_data;
 pub mod compare;
 pub mod envelope;
 pub mod flags;
@@ -72,11 +73,11 @@ pub enum Command {
     /// columns (the speeds along and towards the surface at the first contact), per slope
     /// band, with the 99 %-stable boundary of each row (PNG, CSV, Markdown on stdout).
     Envelope(envelope::EnvelopeArgs),
-    /// A landing-site map of a small body from its shape model (Wavefront OBJ): each
-    /// facet's effective gravity (the constant-density polyhedron's attraction and the
-    /// spin) and slope, and P(stable), P(tipped), ... of the lander there with 95 %
-    /// intervals, from one sweep over the body's slopes and gravities (a table, a summary,
-    /// a map picture and a 3D page).
+    /// A landing-site map of a small body from its shape model (a Wavefront OBJ file, or a
+    /// vertex-facet plate file: PDS .tab, SBMT .plt): each facet's effective gravity (the
+    /// constant-density polyhedron's attraction and the spin) and slope, and P(stable),
+    /// P(tipped), ... of the lander there with 95 % intervals, from one sweep over the
+    /// body's slopes and gravities (a table, a summary, a map picture and a 3D page).
     Site(site::SiteArgs),
 }
 

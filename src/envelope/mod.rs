@@ -40,6 +40,43 @@ pub struct Settings {
     pub azimuth: bool,
 }
 
+/// Refuses an envelope without a sample to place: no sample touched the ground, or the
+/// column along x or y has no value (null, NaN or infinite) in any that did, so the picture
+/// would be empty.
+fn refuse_empty(path: &Path, settings: &Settings, s: &read::Samples) -> anyhow::Result<()> {
+    if !s.x.is_empty() {
+        return Ok(());
+    }
+    let touched = s.rows - s.never_touched;
+    if touched == 0 {
+        bail!(
+            "{}: none of its {} samples touched the ground: an envelope has nothing to place",
+            path.display(),
+            s.rows
+        );
+    }
+    let (flag, column) = if s.with_value.0 == 0 {
+        ("--x", &settings.x)
+    } else if s.with_value.1 == 0 {
+        ("--y", &settings.y)
+    } else {
+        bail!(
+            "{}: no sample that touched the ground has values of both {} (--x) and {} (--y) \
+             (each is null, NaN or infinite where the other is not): an envelope has nothing \
+             to place",
+            path.display(),
+            settings.x,
+            settings.y
+        );
+    };
+    bail!(
+        "{flag} {column}: the column has no value (null, NaN or infinite) in any of the {touched} \
+         samples of {} that touched the ground: an envelope along it would be empty; choose \
+         another column",
+        path.display()
+    )
+}
+
 /// An envelope asked for, checked against its sweep file before its samples are read.
 pub struct Checked {
     path: std::path::PathBuf,
@@ -107,6 +144,7 @@ impl Checked {
         let (path, settings) = (self.path.as_path(), &self.settings);
         let (nx, ny) = settings.bins;
         let s = read::samples(path, (&settings.x, &settings.y), self.legs.as_ref())?;
+        refuse_empty(path, settings, &s)?;
         let bands = match &settings.slope_bands {
             Some(b) => b.clone(),
             None => default_bands(&s.slope_deg),

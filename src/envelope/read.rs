@@ -38,6 +38,8 @@ pub(super) struct Samples {
     /// Samples that touched but have no value of x or y (null, NaN or infinite: the
     /// tangential azimuth of a sample with no speed along the surface).
     pub(super) no_value: u64,
+    /// Samples that touched with a value of x, and with one of y (finite).
+    pub(super) with_value: (u64, u64),
     /// Whether the file has a `limits_broken` column.
     pub(super) limits: bool,
 }
@@ -155,6 +157,7 @@ pub(super) fn samples(
         rows: 0,
         never_touched: 0,
         no_value: 0,
+        with_value: (0, 0),
         limits: false,
     };
     for b in batches {
@@ -220,6 +223,8 @@ impl Samples {
                 self.never_touched += 1;
                 continue;
             }
+            self.with_value.0 += u64::from(xs[i].is_finite());
+            self.with_value.1 += u64::from(ys[i].is_finite());
             if !(xs[i].is_finite() && ys[i].is_finite()) {
                 self.no_value += 1;
                 continue;

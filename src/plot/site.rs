@@ -213,8 +213,8 @@ pub fn site_map(site: &Site, path: &Path) -> anyhow::Result<()> {
 
 /// A number for a title: up to 4 significant digits, no trailing zeros.
 fn short(v: f64) -> String {
-    if !v.is_finite() || v == 0.0 {
-        return format!("{v}");
+    if !v.is_finite() || v == 0.0 || v.abs() >= 1e16 {
+        return crate::site::given_number(v);
     }
     let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
     let s = format!("{v:.digits$}");

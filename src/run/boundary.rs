@@ -3,7 +3,10 @@
 //! (`boundary`'s rules), run through the kernels until every sector stops.
 
 use super::workers::{CHUNK, worker_pool};
-use crate::boundary::{Round, Stop, next_upper, pooled_allowable, stop_rule, with_value_below};
+use crate::boundary::{
+    Round, Stop, next_upper, pooled_allowable, reachable_sectors, stop_rule, with_unit,
+    with_value_below,
+};
 use crate::reference::Model;
 use crate::reference::outcome::Outcome;
 use crate::sampling;
@@ -21,13 +24,21 @@ pub struct Settings {
     /// The value searched (`Sample::values`; 0, the slope, by default).
     pub input: usize,
     /// A sector is finished once its 95 % interval is at most this wide, in the input's
-    /// unit (deg for the slope).
-    pub tolerance: f64,
+    /// unit; `None`: `SLOPE_TOLERANCE_DEG` for the slope, else `TOLERANCE_OF_RANGE` of the
+    /// input's range.
+    pub tolerance: Option<f64>,
     /// Samples per unfinished sector per round.
     pub batch: u64,
     /// A sector is finished once it has run this many samples.
     pub max_samples_per_sector: u64,
 }
+
+/// The default tolerance for the slope, deg.
+pub const SLOPE_TOLERANCE_DEG: f64 = 0.5;
+
+/// The default tolerance of another input, as a fraction of its range: as 0.5 deg is of
+/// the default scenario's slopes, 0 to 45 deg.
+pub const TOLERANCE_OF_RANGE: f64 = 1.0 / 90.0;
 
 /// Candidates drawn per sample a round wants, at most, before a sector the scenario's
 /// azimuth and yaw do not reach is given up.
@@ -60,6 +71,8 @@ pub struct Search {
     pub design: Design,
     /// The value searched (`Settings::input`).
     pub input: usize,
+    /// The tolerance it ran with (`Settings::tolerance`, or its default).
+    pub tolerance: f64,
 }
 
 /// Searches the allowable slope of every sector of `scenario` on `threads` workers,
@@ -74,22 +87,31 @@ pub fn search(
     let dist = input_distribution(&scenario, k)?;
     check_memory(settings)?;
     let range = dist.support();
+    let tolerance = match settings.tolerance {
+        Some(t) => t,
+        None if k == 0 => SLOPE_TOLERANCE_DEG,
+        None if (range.1 - range.0).is_finite() => (range.1 - range.0) * TOLERANCE_OF_RANGE,
+        None => bail!(
+            "--input {}: the scenario draws it without an upper bound ({} = {}), so it has \
+             no default tolerance: give --tolerance (in {})",
+            value_name(k),
+            value_key(k),
+            dist.toml(),
+            value_unit(k)
+        ),
+    };
     // A tolerance as wide as the range would end every sector's search before it began,
     // "allowable up to the top" whatever the samples say.
-    if settings.tolerance >= range.1 - range.0 {
-        let (what, unit) = if k == 0 {
-            ("slope", value_unit(k))
-        } else {
-            ("value", value_unit(k))
-        };
+    if tolerance >= range.1 - range.0 {
+        let unit = value_unit(k);
         anyhow::bail!(
-            "--tolerance {}: less than the width of the {what} range, {} {unit} \
-             ({} from {} to {} {unit}), or every sector stops before it is searched",
-            settings.tolerance,
-            range.1 - range.0,
+            "--tolerance {}: must be less than the width of the range of {}, {} (from {} to \
+             {}), or every sector stops before it is searched",
+            with_unit(tolerance, unit),
             value_key(k),
+            with_unit(range.1 - range.0, unit),
             range.0,
-            range.1
+            with_unit(range.1, unit)
         );
     }
     // Candidates are independent draws; a row of a round takes a candidate's values.
@@ -99,12 +121,20 @@ pub fn search(
     let model = Model::new(&scenario);
     let isa = kernels::isa::Isa::detect();
     let never = AtomicUsize::new(0);
-    let mut sectors: Vec<Sector> = (0..SECTORS)
-        .map(|_| Sector {
+    // A sector no sample can fall in (a fixed azimuth and yaw put every sample in one) is
+    // not searched: drawing for it would spend its whole budget of candidates in vain.
+    let inputs = value_dists(&scenario);
+    let reachable = reachable_sectors(
+        inputs[value_index("downhill_azimuth_deg")],
+        inputs[value_index("yaw_deg")],
+    );
+    let mut sectors: Vec<Sector> = reachable
+        .iter()
+        .map(|&reached| Sector {
             rounds: Vec::new(),
             used: 0,
             allowable: Allowable::TooFewSamples(0),
-            stop: None,
+            stop: (!reached).then_some(Stop::Unreached),
         })
         .collect();
     let mut next_candidate = 0u64;
@@ -119,7 +149,7 @@ pub fn search(
             .collect();
         let upper: Vec<f64> = sectors
             .iter()
-            .map(|s| next_upper(s.allowable, range, settings.tolerance))
+            .map(|s| next_upper(s.allowable, range, tolerance))
             .collect();
         let mut draw = RoundDraw::new(&wanted, next_candidate);
         for (sector, s) in sectors.iter_mut().enumerate() {
@@ -165,7 +195,15 @@ pub fn search(
             }
         }
         total += ran_round;
-        close_round(&mut sectors, &wanted, &got, &upper, range, settings);
+        close_round(
+            &mut sectors,
+            &wanted,
+            &got,
+            &upper,
+            range,
+            tolerance,
+            settings,
+        );
         if progress {
             let open = sectors.iter().filter(|s| s.stop.is_none()).count();
             super::workers::tell(&format!(
@@ -182,6 +220,7 @@ pub fn search(
         dist,
         design,
         input: k,
+        tolerance,
     })
 }
 
@@ -193,6 +232,7 @@ fn close_round(
     got: &[u64],
     upper: &[f64],
     range: (f64, f64),
+    tolerance: f64,
     settings: &Settings,
 ) {
     for (k, sector) in sectors.iter_mut().enumerate() {
@@ -204,7 +244,7 @@ fn close_round(
         sector.stop = sector.stop.or(stop_rule(
             sector.allowable,
             range,
-            settings.tolerance,
+            tolerance,
             upper[k],
             (sector.used, settings.max_samples_per_sector),
         ));
@@ -282,6 +322,13 @@ fn input_distribution(scenario: &Scenario, k: usize) -> anyhow::Result<Dist> {
         );
     }
     Ok(dist)
+}
+
+/// The position in `Sample::values` of the value named `name`.
+fn value_index(name: &str) -> usize {
+    (0..crate::scenario::VALUES)
+        .find(|&k| value_name(k) == name)
+        .expect("a value of every sample")
 }
 
 /// Rows of a round run at once, at most: about 200 bytes of sample each, twice (the rows

@@ -25,7 +25,7 @@ use std::time::Instant;
 /// The settings of a landing-site map (`touchdown site`'s flags).
 #[derive(Debug, Clone)]
 pub struct SiteSettings {
-    /// The shape model, a Wavefront OBJ file.
+    /// The shape model, a Wavefront OBJ or a vertex-facet plate file.
     pub shape: PathBuf,
     /// Metres per unit of the shape file's coordinates.
     pub metres_per_unit: f64,
@@ -188,6 +188,15 @@ fn body_of(
         .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
     let poly = Polyhedron::new(mesh, args.density_kg_m3)
         .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
+    if !poly.mass_kg().is_finite() {
+        bail!(
+            "--density {} kg/m^3: the body's mass, the density times its volume of {:.4e} m^3, \
+             overflows (is no number), and so would its gravity: check --density and its unit, \
+             kg/m^3",
+            crate::site::given_number(args.density_kg_m3),
+            poly.mesh().volume_m3()
+        );
+    }
     warn_off_centre(&args.shape, &poly);
     if let Some(w) = implausible_body(&figures(args, poly.mesh().volume_m3())) {
         warn(&format!("{}: {w}", args.shape.display()));
@@ -294,8 +303,8 @@ fn sweep_text(
             || args.shape.display().to_string(),
             |n| n.to_string_lossy().into_owned()
         ),
-        args.density_kg_m3,
-        args.spin_period_h,
+        crate::site::given_number(args.density_kg_m3),
+        crate::site::given_number(args.spin_period_h),
         toml::to_string(&table).context("cannot write the site's scenario")?
     );
     let scenario = scenario_from_toml(&text).map_err(|e| {
@@ -316,6 +325,16 @@ fn names() -> Names {
         owner: "map",
         sweep: "the map's sweep".into(),
         sweep_long: "the map's sweep".into(),
+        set_by_flags: &[
+            (
+                "inputs.slope_deg",
+                "the slopes drawn, from 0 to the steepest facet's plus --slope-window",
+            ),
+            (
+                "gravity_m_s2",
+                "the gravities drawn, the facets' widened by --gravity-window",
+            ),
+        ],
     }
 }
 

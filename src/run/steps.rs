@@ -41,6 +41,9 @@ pub struct Names {
     pub sweep: String,
     /// The name in "DIR holds shards of {sweep_long} cut N and M ways".
     pub sweep_long: String,
+    /// The scenario keys the command's flags set, each with what sets it: a file whose
+    /// scenario differs in one is said to differ in it, and why.
+    pub set_by_flags: &'static [(&'static str, &'static str)],
 }
 
 /// What to do with a kept sweep (or its shard) given what the folder holds.
@@ -89,22 +92,68 @@ fn differs(
     meta: &HashMap<String, String>,
     kept: &Kept<'_>,
     shard: Option<Shard>,
-) -> Option<&'static str> {
+) -> Option<String> {
     let get = |k: &str| meta.get(k).map(String::as_str);
     if get("touchdown.seed") != Some(kept.scenario.seed.to_string().as_str()) {
-        return Some("its seed");
+        return Some("its seed".into());
     }
     if get("touchdown.samples") != Some(kept.samples.to_string().as_str()) {
-        return Some("its sample count");
+        return Some("its sample count".into());
     }
     let file_shard = get(crate::output::sweep::SHARD_KEYS[0]);
     if file_shard != shard.map(|s| s.to_string()).as_deref() {
-        return Some("its shard");
+        return Some("its shard".into());
     }
-    if get("touchdown.scenario") != Some(kept.text) {
-        return Some("its scenario");
+    let text = get("touchdown.scenario");
+    if text != Some(kept.text) {
+        let keys = text.map_or_else(Vec::new, |t| changed_keys(t, kept.text));
+        if keys.is_empty() {
+            return Some("its scenario".into());
+        }
+        let named: Vec<String> = keys
+            .iter()
+            .map(
+                |k| match kept.names.set_by_flags.iter().find(|(key, _)| key == k) {
+                    Some((_, by)) => format!("{k} ({by})"),
+                    None => k.clone(),
+                },
+            )
+            .collect();
+        return Some(format!("its scenario's {}", named.join(", ")));
     }
     None
+}
+
+/// The keys whose values differ between the scenario texts `a` and `b`, dotted, in order
+/// (a distribution is one value); none where either is not TOML.
+fn changed_keys(a: &str, b: &str) -> Vec<String> {
+    fn walk(a: &toml::Table, b: &toml::Table, path: &str, out: &mut Vec<String>) {
+        let mut keys: Vec<&String> = a.keys().chain(b.keys()).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        for k in keys {
+            let key = if path.is_empty() {
+                k.clone()
+            } else {
+                format!("{path}.{k}")
+            };
+            match (a.get(k), b.get(k)) {
+                (Some(toml::Value::Table(x)), Some(toml::Value::Table(y)))
+                    if !x.contains_key("dist") && !y.contains_key("dist") =>
+                {
+                    walk(x, y, &key, out);
+                }
+                (x, y) if x != y => out.push(key),
+                _ => {}
+            }
+        }
+    }
+    let (Ok(a), Ok(b)) = (a.parse::<toml::Table>(), b.parse::<toml::Table>()) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    walk(&a, &b, "", &mut out);
+    out
 }
 
 /// The metadata of the sweep file `path`.
@@ -122,7 +171,7 @@ pub fn step_of(kept: &Kept<'_>, shard: Option<Shard>) -> anyhow::Result<Step> {
     let file = shard.map_or_else(|| kept.file.to_path_buf(), |s| shard_file(kept.file, s));
     let other = |path: &Path, what: &str| {
         anyhow!(
-            "{} is not {} (it differs in {what}): remove it, or give the {} another --out-dir",
+            "{} is not {}: it differs in {what}; remove it, or give the {} another --out-dir",
             path.display(),
             kept.names.whose,
             kept.names.owner
@@ -132,7 +181,7 @@ pub fn step_of(kept: &Kept<'_>, shard: Option<Shard>) -> anyhow::Result<Step> {
         let meta = metadata_of(&file)?;
         return match differs(&meta, kept, shard) {
             None => Ok(Step::Kept),
-            Some(what) => Err(other(&file, what)),
+            Some(what) => Err(other(&file, &what)),
         };
     }
     let interrupted = crate::output::interrupted_path(&file);
@@ -140,7 +189,7 @@ pub fn step_of(kept: &Kept<'_>, shard: Option<Shard>) -> anyhow::Result<Step> {
         let meta = metadata_of(&interrupted)?;
         return match differs(&meta, kept, shard) {
             None => Ok(Step::Resume),
-            Some(what) => Err(other(&interrupted, what)),
+            Some(what) => Err(other(&interrupted, &what)),
         };
     }
     if shard.is_some() {
@@ -159,7 +208,7 @@ pub fn step_of(kept: &Kept<'_>, shard: Option<Shard>) -> anyhow::Result<Step> {
             shard.to_string(),
         );
         if let Some(what) = differs(&meta, kept, Some(shard)) {
-            return Err(other(f, what));
+            return Err(other(f, &what));
         }
     }
     Ok(Step::Merge(files))

@@ -121,6 +121,7 @@ impl Point {
             names: Names {
                 whose: format!("this study's sweep at {}", self.value),
                 owner: "study",
+                set_by_flags: &[],
                 sweep: format!("the sweep at {}", self.value),
                 // "the sweep at lander.cg_height_m = 0.4": the key is the text's header's.
                 sweep_long: format!(

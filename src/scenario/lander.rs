@@ -36,8 +36,8 @@ table! {
         /// Where the legs are: `legs` and its fellows, or `leg_tips_m`.
         geometry: Geometry = read_geometry(r, sampled)?,
         /// Area of each footpad's sole, m^2: its bearing area on regolith, and the size of
-        /// the sphere that meets rocks (MODEL.md section 5.1). default.toml does not show
-        /// it (its text is stored in every sweep).
+        /// the sphere that meets rocks (MODEL.md section 5.1). default.toml shows it
+        /// commented out, with this default.
         footpad_area_m2: f64 = read_parameter(r.or(key, 0.03), key, sampled)?,
     }
 }

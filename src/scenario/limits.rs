@@ -4,6 +4,7 @@
 //! The decision (`Limits::broken`) lives here, with the data, so that the reference's
 //! summary and the sweep's kernels alike can ask for it from the layers above.
 
+use super::damper::Damper;
 use super::error::ScenarioError;
 use super::reader::table;
 
@@ -105,18 +106,41 @@ impl Limits {
         )
     }
 
-    /// Refuses a minimum stroke margin without dampers (there is no stroke to keep).
-    pub(super) fn check(&self, dampers: bool) -> Result<(), ScenarioError> {
-        match self.stroke_margin_m {
-            Some(m) if !dampers => Err(ScenarioError::Invalid {
+    /// Refuses a minimum stroke margin without dampers (there is no stroke to keep), and
+    /// one of the whole usable stroke or more, which leaves no stroke to use: every sample
+    /// that strokes at all would break it (and beyond the stroke, every sample).
+    pub(super) fn check(&self, damper: &Damper) -> Result<(), ScenarioError> {
+        let Some(m) = self.stroke_margin_m else {
+            return Ok(());
+        };
+        let refuse = |allowed: String| {
+            Err(ScenarioError::Invalid {
                 key: "limits.stroke_margin_m".to_string(),
-                value: m.to_string(),
-                allowed: "no minimum stroke margin while damper.enabled = false (rigid legs \
-                          have no stroke): enable the damper, or leave the key out"
+                value: format!("{m} m"),
+                allowed,
+            })
+        };
+        if !damper.enabled {
+            return refuse(
+                "no minimum stroke margin while damper.enabled = false (rigid legs have no \
+                 stroke): enable the damper, or leave the key out"
                     .to_string(),
-            }),
-            _ => Ok(()),
+            );
         }
+        let stroke_m: f64 = damper.stages.iter().map(|s| s.stroke_m).sum();
+        if m >= stroke_m {
+            let of = if damper.stages.len() == 1 {
+                "damper.usable_stroke_m".to_string()
+            } else {
+                format!("the {} damper.stages' stroke_m summed", damper.stages.len())
+            };
+            return refuse(format!(
+                "a margin less than the damper's usable stroke, {stroke_m} m ({of}): a margin \
+                 of the whole stroke or more leaves none to use, so every sample that strokes \
+                 at all would break it"
+            ));
+        }
+        Ok(())
     }
 }
 

@@ -5,8 +5,11 @@
 //! once in Rust: the `table!` declaration of its table (`reader`) makes it a documented
 //! field, reads it under the field's name and names its check. Its default is the commented
 //! file `default.toml` beside this module, at the same path, which `touchdown scenario`
-//! prints and `Scenario::default()` reads (as an empty file); the tables it shows only in
-//! comments (`[propulsion]`, `[control]`) give theirs in their declaration (`Reader::or`).
+//! prints and `Scenario::default()` reads (as an empty file); the tables and keys it shows
+//! only in comments (`[surface.rocks]`, `[surface.regolith]`, `[propulsion]`, `[control]`,
+//! ...) give theirs in their declaration (`Reader::or`). `tests/scenario_keys.rs` checks
+//! that the file shows every key the reader accepts, each commented-out one with the
+//! default its declaration gives.
 //!
 //! From the ground up: `error`, the TOML walker `reader`, one module per table of the file
 //! (`inputs`, `lander`, `surface`, ...), a `sample` and a `table` of inputs, the whole

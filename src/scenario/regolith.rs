@@ -1,6 +1,7 @@
 //! The `[surface.regolith]` table: the soil a footpad sinks into when `surface.kind` is
-//! `"regolith"` (MODEL.md section 5.1). default.toml does not show it (its text is stored
-//! in every sweep): the defaults are given here (`Reader::or`), those of a lunar-like soil.
+//! `"regolith"` (MODEL.md section 5.1). default.toml shows it commented out (a table read
+//! only on regolith): the defaults are given here (`Reader::or`), those of a lunar-like
+//! soil.
 
 use super::inputs::{Parameter, Sampled, read_parameter};
 use super::reader::table;

@@ -100,6 +100,10 @@ pub const MAX_VERTICES: usize = 5_000_000;
 /// The most triangles a shape model may have, after splitting polygons.
 pub const MAX_FACETS: usize = 5_000_000;
 
+/// The largest coordinate of a vertex, m: its cube, 1e300, leaves room below the largest
+/// number (1.8e308) for the sums of products of three coordinates the volume takes.
+pub const MAX_COORDINATE_M: f64 = 1e100;
+
 /// A facet's area below this fraction of the squared size of the mesh is degenerate.
 pub const DEGENERATE_AREA: f64 = 1e-12;
 
@@ -112,7 +116,7 @@ impl Mesh {
     /// non-degenerate triangles whose facets face outwards, and computes its geometry.
     /// Refused, naming the first problem in file order (vertices and facets numbered from 1
     /// as in the file): fewer than 4 facets, a facet naming a vertex that does not exist or a
-    /// coordinate that is not finite, a facet repeating a vertex or of area below
+    /// coordinate that is not finite or beyond [`MAX_COORDINATE_M`] (an overflow), a facet repeating a vertex or of area below
     /// [`DEGENERATE_AREA`] times the squared bounding-box diagonal, an edge used by one
     /// facet (not closed), by more than two (not manifold), or twice in the same direction
     /// (not consistently oriented), a surface that encloses a negative volume (inverted:
@@ -154,6 +158,8 @@ impl Mesh {
     fn used_size(&self) -> Result<f64, ShapeError> {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
+        // The vertex farthest out along an axis, with the first facet that names it.
+        let mut farthest = (0.0_f64, 0, 0);
         for (f, facet) in self.facets.iter().enumerate() {
             for &v in facet {
                 let Some(p) = self.vertices.get(v as usize) else {
@@ -171,9 +177,28 @@ impl Mesh {
                     lo[k] = lo[k].min(p[k]);
                     hi[k] = hi[k].max(p[k]);
                 }
+                let out = p.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+                if out > farthest.0 {
+                    farthest = (out, v, f);
+                }
             }
         }
-        Ok(norm(sub(hi, lo)))
+        // The volume and the gravity take products of three coordinates: beyond
+        // MAX_COORDINATE_M they overflow, and every check after this would blame a facet for
+        // what is a coordinate out of range.
+        let (out, v, f) = farthest;
+        if out > MAX_COORDINATE_M {
+            let p = self.vertices[v as usize];
+            return refuse(format!(
+                "vertex {} (of facet {}) at {p:?} m overflows: the volume and the gravity \
+                 take products of three coordinates, numbers only for coordinates of at most \
+                 {MAX_COORDINATE_M:e} m (check the coordinates and the units)",
+                v as u64 + 1,
+                f + 1,
+            ));
+        }
+        let size_m = norm(sub(hi, lo));
+        Ok(size_m)
     }
 
     /// Each facet's centroid, normal and area; refuses a degenerate facet.

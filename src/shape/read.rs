@@ -1,7 +1,8 @@
 //! A shape model read by its content: a vertex-facet plate model (plate.rs) when the first
-//! line that is not blank holds one or two counts and nothing else (`NV NF` or `NV`), a
-//! Wavefront OBJ file (obj.rs) otherwise. No OBJ file starts so (its lines start with a
-//! keyword), so an OBJ file is read as [`read_obj`](super::read_obj) reads it, with the same
+//! line that is not blank holds one or two numbers and nothing else (the counts `NV NF` or
+//! `NV`; the plate reader refuses numbers that are no counts, `-5 320`, as a plate model's
+//! header), a Wavefront OBJ file (obj.rs) otherwise. No OBJ file starts so (its lines
+//! start with a keyword), so an OBJ file is read as [`read_obj`](super::read_obj) reads it, with the same
 //! mesh or the same message, except that a UTF-8 byte order mark at its very start is read
 //! past here (for either format) and refused there.
 
@@ -28,7 +29,8 @@ pub fn parse_shape(text: &str, name: &str, metres_per_unit: f64) -> Result<Mesh,
 /// The UTF-8 byte order mark.
 const BOM: &[u8] = b"\xEF\xBB\xBF";
 
-/// Whether a line holds one or two counts (digits only) and nothing else.
+/// Whether a line holds one or two numbers and nothing else: a plate model's counts, or
+/// what was meant as them (an OBJ line starts with a keyword).
 fn is_plate_counts(line: &[u8]) -> bool {
     let Ok(text) = std::str::from_utf8(line) else {
         return false;
@@ -36,7 +38,7 @@ fn is_plate_counts(line: &[u8]) -> bool {
     let mut n = 0;
     for word in text.split_whitespace() {
         n += 1;
-        if n > 2 || !is_count(word) {
+        if n > 2 || !(is_count(word) || word.parse::<f64>().is_ok()) {
             return false;
         }
     }

@@ -104,6 +104,18 @@ impl SiteFacet {
     }
 }
 
+/// A number the user gave (a density, a spin period), as messages and files show it: as
+/// Rust writes it where that is short, in exponent form (`1e300`, the same number) where
+/// it would run to more than 16 digits or start with more than 4 zeros.
+#[must_use]
+pub fn given_number(x: f64) -> String {
+    if x != 0.0 && x.is_finite() && !(1e-4..1e16).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
 /// The body: its shape and the numbers it was given.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {

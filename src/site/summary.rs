@@ -78,7 +78,8 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
     let _ = writeln!(
         s,
         "| mass | {:.4e} kg (density {} kg/m^3) |",
-        b.mass_kg, b.density_kg_m3
+        b.mass_kg,
+        super::given_number(b.density_kg_m3)
     );
     // Shown to the centimetre, without a "-0.00".
     let c = b
@@ -92,7 +93,10 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
     let _ = writeln!(
         s,
         "| spin | period {} h about ({:.4}, {:.4}, {:.4}) |",
-        b.spin_period_h, b.spin_axis[0], b.spin_axis[1], b.spin_axis[2]
+        super::given_number(b.spin_period_h),
+        b.spin_axis[0],
+        b.spin_axis[1],
+        b.spin_axis[2]
     );
     let _ = writeln!(
         s,

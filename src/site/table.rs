@@ -47,8 +47,14 @@ fn metadata(site: &Site, about: &About<'_>) -> HashMap<String, String> {
         ("touchdown.engine", ENGINE.to_string()),
         ("touchdown.site.shape", about.shape.to_string()),
         ("touchdown.site.body", b.name.clone()),
-        ("touchdown.site.density_kg_m3", b.density_kg_m3.to_string()),
-        ("touchdown.site.spin_period_h", b.spin_period_h.to_string()),
+        (
+            "touchdown.site.density_kg_m3",
+            super::given_number(b.density_kg_m3),
+        ),
+        (
+            "touchdown.site.spin_period_h",
+            super::given_number(b.spin_period_h),
+        ),
         (
             "touchdown.site.spin_axis",
             format!("{} {} {}", b.spin_axis[0], b.spin_axis[1], b.spin_axis[2]),

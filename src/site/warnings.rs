@@ -50,7 +50,8 @@ impl BodyFigures<'_> {
     fn provenance(&self) -> String {
         format!(
             "--density {} kg/m^3, the shape in --units {}",
-            self.density_kg_m3, self.units
+            super::given_number(self.density_kg_m3),
+            self.units
         )
     }
 }
@@ -81,8 +82,9 @@ pub fn implausible_body(b: &BodyFigures<'_>) -> Option<String> {
     }
     if !(DENSITY_RANGE_KG_M3.0..=DENSITY_RANGE_KG_M3.1).contains(&rho) {
         why.push(format!(
-            "--density {rho} kg/m^3 is no small body's (comets about 500, metal about 8000): \
-             is it in kg/m^3?"
+            "--density {} kg/m^3 is no small body's (comets about 500, metal about 8000): \
+             is it in kg/m^3?",
+            super::given_number(rho)
         ));
     }
     if !(GRAVITY_RANGE_M_S2.0..=GRAVITY_RANGE_M_S2.1).contains(&g) {

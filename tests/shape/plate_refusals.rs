@@ -255,6 +255,18 @@ fn bad_rows_are_refused_naming_the_line() {
         let e = parse_plate(text, "t.tab", 1.0).unwrap_err().to_string();
         assert!(e.starts_with(message), "{text:?}: {e}");
     }
+    // Numbers that are no counts open a plate model all the same (an OBJ line starts with
+    // a keyword): refused as its header, not as an OBJ statement.
+    for (text, message) in [
+        (
+            "-5 320\n1 0 0 0\n",
+            "t.tab, line 1: '-5' is not a count of vertices",
+        ),
+        ("6 -8\n", "t.tab, line 1: '-8' is not a count of facets"),
+        ("6.0 8\n", "t.tab, line 1: '6.0' is not a count of vertices"),
+    ] {
+        assert_eq!(refused(text), message, "{text:?}");
+    }
     let long = format!("4 4\n1 0 0 0{}\n", " ".repeat(MAX_LINE_BYTES));
     assert_eq!(
         refused(&long),

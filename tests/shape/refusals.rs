@@ -65,6 +65,19 @@ fn bad_meshes_are_refused_naming_the_first_bad_edge_or_facet() {
         "shape model refused: not manifold: edge 2-1 is shared by 3 facets (2, 5, 13)"
     );
 
+    // A coordinate whose cube overflows is named as the overflow, at its vertex and the
+    // first facet that names it (not as a degenerate facet of a mesh "inf m across").
+    let mut far = cube(1.0);
+    far.vertices[6][2] = 1e300;
+    let e = refused(far);
+    assert!(
+        e.starts_with(
+            "shape model refused: vertex 7 (of facet 3) at [1.0, 1.0, 1e300] m overflows"
+        ),
+        "{e}"
+    );
+    assert!(e.contains("at most 1e100 m"), "{e}");
+
     let mut few = cube(1.0);
     few.facets.truncate(3);
     assert_eq!(
