@@ -408,6 +408,14 @@ pub(super) const PLANS: &[Plan] = &[
         ),
     },
     Plan {
+        file: README,
+        key: "for t in 1 2 $(nproc); do",
+        how: How::NotRun(
+            "measures speed (three sweeps of 2e5 samples, a minute on 2 cores): its figures \
+             want idle cores, and the serial share it prints is a ratio of CPU times",
+        ),
+    },
+    Plan {
         file: SCENARIOS,
         key: "for f in scenarios/*.toml; do",
         how: How::NotRun(ALL_STUDIES),
