@@ -285,7 +285,7 @@ pub(super) const PLANS: &[Plan] = &[
     },
     Plan {
         file: README,
-        key: ".venv/bin/pip install ./python",
+        key: ".venv/bin/pip install -v ./python",
         how: How::NotRun(
             "builds the Python package (minutes); tests/python_package.rs builds the same wheel \
              and tests it",
