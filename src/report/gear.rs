@@ -46,6 +46,14 @@ impl LimitCounts {
             *count += n * u64::from(broken.has(i));
         }
     }
+
+    /// Adds the counts of `o`.
+    pub fn merge(&mut self, o: &LimitCounts) {
+        self.within += o.within;
+        for (c, k) in self.each.iter_mut().zip(o.each) {
+            *c += k;
+        }
+    }
 }
 
 /// Samples with a bottomed damper, and with `[limits]` the stable samples that broke none

@@ -151,10 +151,7 @@ pub fn execute(plan: &SweepPlan, run: &RunOptions<'_>) -> anyhow::Result<Execute
         *c += t;
     }
     if let Some(l) = &mut limits {
-        l.within += tally.limits.within;
-        for (c, t) in l.each.iter_mut().zip(tally.limits.each) {
-            *c += t;
-        }
+        l.merge(&tally.limits);
     }
     Ok(Executed {
         rows,
@@ -249,10 +246,7 @@ impl Tally {
             .untouched_tipped_slope_deg
             .min(o.untouched_tipped_slope_deg);
         self.untouched_descending += o.untouched_descending;
-        self.limits.within += o.limits.within;
-        for (c, k) in self.limits.each.iter_mut().zip(o.limits.each) {
-            *c += k;
-        }
+        self.limits.merge(&o.limits);
     }
 }
 

@@ -43,14 +43,6 @@ pub struct Made {
     chunks: Option<Vec<ArrowColumnChunk>>,
 }
 
-impl Made {
-    /// The batch's rows.
-    #[must_use]
-    pub fn batch(&self) -> &RecordBatch {
-        &self.batch
-    }
-}
-
 impl BatchMaker {
     /// The batch of `rows` (consecutive samples, in order).
     pub fn make(&self, rows: &[Row]) -> anyhow::Result<Made> {
@@ -97,19 +89,17 @@ struct FileOut {
     sink: Writer,
 }
 
-/// Writes rows as they come, in batches of `BATCH_ROWS`, to a file that appears under its
-/// name only after `finish`; or keeps the batches in memory (`in_memory`, `keeping`), or
-/// both. A resumed sweep's first batch may begin with rows it took over (`hold`).
+/// Writes the batches its `maker` makes of the rows as they come (`push_made`), of
+/// `BATCH_ROWS` rows, to a file that appears under its name only after `finish`; or keeps
+/// them in memory (`in_memory`, `keeping`), or both. A resumed sweep's first batch may
+/// begin with rows it took over (`hold`).
 pub struct SweepWriter {
     out: Option<FileOut>,
     schema: SchemaRef,
     legs: usize,
-    pending: Vec<Row>,
-    /// Rows of the batch being made that came as a record batch (`hold`: those a resumed
-    /// sweep took over after its whole batches), before the `pending` ones.
+    /// The first rows of the next batch, which came as a record batch (`hold`: those a
+    /// resumed sweep took over after its whole batches).
     held: Option<RecordBatch>,
-    /// The rows `pending` takes before its batch is full: `BATCH_ROWS` less the held ones.
-    room: usize,
     rows: u64,
     /// The table of inputs whose columns pass through (`--keep-columns`).
     table: Option<Arc<crate::scenario::InputTable>>,
@@ -160,9 +150,7 @@ impl SweepWriter {
             out: None,
             schema: schema(legs, info),
             legs,
-            pending: Vec::with_capacity(BATCH_ROWS),
             held: None,
-            room: BATCH_ROWS,
             rows: 0,
             table: None,
             kept: Some(Vec::new()),
@@ -183,17 +171,6 @@ impl SweepWriter {
         self
     }
 
-    /// Takes rows in sample order; writes every full batch.
-    pub fn push(&mut self, rows: Vec<Row>) -> anyhow::Result<()> {
-        for row in rows {
-            self.pending.push(row);
-            if self.pending.len() == self.room {
-                self.flush()?;
-            }
-        }
-        Ok(())
-    }
-
     /// What makes this writer's batches on other threads (`push_made`).
     #[must_use]
     pub fn maker(&self) -> BatchMaker {
@@ -201,13 +178,18 @@ impl SweepWriter {
             schema: self.schema.clone(),
             legs: self.legs,
             table: self.table.clone(),
-            row_groups: match &self.out {
-                Some(FileOut {
-                    sink: Writer::Parquet { row_groups, .. },
-                    ..
-                }) => Some(row_groups.clone()),
-                _ => None,
-            },
+            row_groups: self.row_groups(),
+        }
+    }
+
+    /// The encoder of a Parquet file's row groups (none for Arrow or no file).
+    fn row_groups(&self) -> Option<Arc<ArrowRowGroupWriterFactory>> {
+        match &self.out {
+            Some(FileOut {
+                sink: Writer::Parquet { row_groups, .. },
+                ..
+            }) => Some(row_groups.clone()),
+            _ => None,
         }
     }
 
@@ -215,14 +197,12 @@ impl SweepWriter {
     /// begins with rows a resumed sweep took over).
     #[must_use]
     pub fn room(&self) -> usize {
-        self.room
+        BATCH_ROWS - self.held.as_ref().map_or(0, RecordBatch::num_rows)
     }
 
     /// Writes a batch its `maker` made of the next rows: the next batch's `room` rows, or
-    /// fewer as the last. Not to be mixed with `push`.
+    /// fewer as the last.
     pub fn push_made(&mut self, made: Made) -> anyhow::Result<()> {
-        debug_assert!(self.pending.is_empty(), "push_made after push");
-        self.room = BATCH_ROWS;
         match self.held.take() {
             // The rows a resumed sweep took over come first: the batch is encoded here.
             Some(h) => {
@@ -234,46 +214,24 @@ impl SweepWriter {
     }
 
     /// Takes `rows` (fewer than a batch, in this writer's schema) as the first rows of the
-    /// next batch, which the rows pushed after them fill: a resumed sweep's rows after the
+    /// next batch, which the batch made after them fills: a resumed sweep's rows after the
     /// whole batches it took over, so that its file is cut into the batches of a sweep that
     /// never stopped.
     pub fn hold(&mut self, rows: RecordBatch) {
         debug_assert!(
-            self.pending.is_empty() && self.held.is_none() && rows.num_rows() < BATCH_ROWS,
-            "hold before push, less than a batch"
+            self.held.is_none() && rows.num_rows() < BATCH_ROWS,
+            "hold once, less than a batch"
         );
         if rows.num_rows() > 0 {
-            self.room = BATCH_ROWS - rows.num_rows();
             self.held = Some(rows);
         }
     }
 
+    /// Writes the held rows, if no batch came to fill them.
     fn flush(&mut self) -> anyhow::Result<()> {
-        self.room = BATCH_ROWS;
-        let held = self.held.take();
-        if self.pending.is_empty() {
-            return match held {
-                Some(b) => self.write_batch(&zero_nulls(&b)?),
-                None => Ok(()),
-            };
-        }
-        let first = self.pending[0].sample.index;
-        debug_assert!(
-            self.pending
-                .iter()
-                .enumerate()
-                .all(|(i, r)| r.sample.index == first + i as u64),
-            "rows in sample order"
-        );
-        let kept = match &self.table {
-            Some(t) => t.kept_rows(first, self.pending.len())?,
-            None => Vec::new(),
-        };
-        let b = batch(&self.schema, self.legs, &self.pending, kept)?;
-        self.pending.clear();
-        match held {
-            Some(h) => self.write_batch(&zero_nulls(&concat_batches(&self.schema, [&h, &b])?)?),
-            None => self.write_batch(&b),
+        match self.held.take() {
+            Some(b) => self.write_batch(&zero_nulls(&b)?),
+            None => Ok(()),
         }
     }
 
@@ -283,11 +241,9 @@ impl SweepWriter {
         &self.schema
     }
 
-    /// Writes a whole batch as it is (for `merge`, which cuts its batches itself). Not to
-    /// be mixed with `push`.
+    /// Writes a whole batch as it is (for `merge`, which cuts its batches itself).
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
-        debug_assert!(self.pending.is_empty(), "write_batch after push");
-        let Some(row_groups) = self.maker().row_groups else {
+        let Some(row_groups) = self.row_groups() else {
             return self.write_made(Made {
                 batch: b.clone(),
                 chunks: None,
