@@ -153,6 +153,21 @@ pub fn all_false<L: Lane>() -> L::Mask {
     L::Mask::NONE
 }
 
+/// `*to = mask.select(x, *to)`, written as one plain store of the whole lane value.
+///
+/// Written as it reads, LLVM turns that load-select-store of one place into a masked store
+/// (`vmaskmovpd`/`vmaskmovps` under AVX2), which AMD's Zen cores run as a long microcoded
+/// sequence: with the four strut peaks written so, the default sweep on the 2-core AMD
+/// EPYC machine ran at 0.93x (f64) and 0.79x (f32) of this (alternated, 2e5 samples,
+/// 1 thread). A volatile store is kept as written: the blend in registers, then a store.
+#[inline(always)]
+pub fn select_into<L: Lane>(to: &mut L, mask: L::Mask, x: L) {
+    let value = mask.select(x, *to);
+    // SAFETY: `to` is a live, aligned, exclusive reference to an initialised `L` (a
+    // `Copy` type with no drop), so writing a whole `L` through it is sound.
+    unsafe { std::ptr::write_volatile(to, value) }
+}
+
 /// `acc.max(x)` for an accumulator `acc` that is never NaN: lanes where `x` is NaN keep
 /// `acc`, as with `max`, but in one instruction (`max` also guards against a NaN `acc`).
 #[inline(always)]

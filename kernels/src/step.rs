@@ -3,7 +3,7 @@
 
 use crate::block::{Block, LegLanes, SurfaceLanes};
 use crate::contact::{self, tip_in_body};
-use crate::lane::{Lane, Mask, all_false, min_into};
+use crate::lane::{Lane, Mask, all_false, min_into, select_into};
 use crate::params::Params;
 use crate::rigid_body;
 use crate::rocks::contact_lanes;
@@ -190,17 +190,18 @@ pub fn step<
 /// state turned non-finite, is never above it). A leg off the surface in every lane takes
 /// no step here: its loads are 0, never above a peak. Four selects every contact step,
 /// without a test whether a lane set a peak: measured faster than the test (whose branch
-/// goes both ways while loads rise), the same bytes.
+/// goes both ways while loads rise), the same bytes; each stored whole (`select_into`), not
+/// as a masked store.
 #[inline(always)]
 fn strut_peaks<L: Lane>(leg: &mut LegLanes<L>, f: Vec3<L>, strut_up: Vec3<L>, t_s: L) {
     let axial = f.dot(strut_up);
     let side_squared = axial.mul_neg_add(axial, f.length_squared());
     let higher = axial.simd_gt(leg.peak_axial_n);
     let higher_side = side_squared.simd_gt(leg.peak_side_squared);
-    leg.peak_axial_n = higher.select(axial, leg.peak_axial_n);
-    leg.peak_axial_s = higher.select(t_s, leg.peak_axial_s);
-    leg.peak_side_squared = higher_side.select(side_squared, leg.peak_side_squared);
-    leg.peak_side_s = higher_side.select(t_s, leg.peak_side_s);
+    select_into(&mut leg.peak_axial_n, higher, axial);
+    select_into(&mut leg.peak_axial_s, higher, t_s);
+    select_into(&mut leg.peak_side_squared, higher_side, side_squared);
+    select_into(&mut leg.peak_side_s, higher_side, t_s);
 }
 
 /// `t += dt`, compensated (Kahan): `error` keeps what rounding dropped and the next step
