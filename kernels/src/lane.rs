@@ -54,8 +54,8 @@ pub trait Mask:
 }
 
 /// `LANES` landers side by side. Implementations are `#[inline(always)]` throughout: the
-/// kernels are compiled inside one function per instruction set (see `isa`), and anything
-/// not inlined there would lose that instruction set.
+/// kernels are compiled inside functions per instruction set (see `isa`), and anything not
+/// inlined there would lose that instruction set.
 pub trait Lane:
     Copy
     + Debug

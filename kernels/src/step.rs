@@ -297,50 +297,71 @@ pub struct Advanced {
 /// outcome tracking), stopping after the first step that decides a lane, asks for a
 /// lane to be recentred or brings one to a control event: the caller then takes over, with
 /// `bits` and `events` saying which lanes.
-/// Each lane type compiles this inside a function that enables its instruction set
-/// (`isa`); a call runs many steps, so the three parts are inlined into one loop and
-/// nothing but the block's state crosses from one step to the next (one call per step,
-/// with the parts as functions of their own, measured 15-19 % slower).
+/// A call runs many steps, so the three parts are inlined into one loop and nothing but
+/// the block's state crosses from one step to the next (one call per step, with the parts
+/// as functions of their own, measured 15-19 % slower).
 ///
 /// The loop is compiled once for each combination of dampers, rough terrain, thrust and
 /// regolith, and the parameters pick one: the step then tests for none of them (a test per
 /// leg and step, and code that the compiler would otherwise hoist out of the tests: a
 /// division per step for dampers that are not there), and a lander without thrusters or
-/// regolith pays nothing for them.
+/// regolith pays nothing for them. `C` (`Loop`) compiles each combination's loop for the
+/// lane type's instruction set (`isa`).
 #[inline(always)]
-pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>, steps: u32) -> Advanced {
+pub fn advance<L: Lane, C: Loop<L>>(p: &Params<L>, block: &mut Block<L>, steps: u32) -> Advanced {
     match (
         p.honeycomb.is_some(),
         p.terrain.is_some() || p.rocks.is_some(),
         p.thrust,
         p.soil.is_some(),
     ) {
-        (false, false, false, false) => {
-            advance_with::<L, false, false, false, false>(p, block, steps)
-        }
-        (true, false, false, false) => {
-            advance_with::<L, true, false, false, false>(p, block, steps)
-        }
-        (false, true, false, false) => {
-            advance_with::<L, false, true, false, false>(p, block, steps)
-        }
-        (true, true, false, false) => advance_with::<L, true, true, false, false>(p, block, steps),
-        (false, false, true, false) => {
-            advance_with::<L, false, false, true, false>(p, block, steps)
-        }
-        (true, false, true, false) => advance_with::<L, true, false, true, false>(p, block, steps),
-        (false, true, true, false) => advance_with::<L, false, true, true, false>(p, block, steps),
-        (true, true, true, false) => advance_with::<L, true, true, true, false>(p, block, steps),
-        (false, false, false, true) => {
-            advance_with::<L, false, false, false, true>(p, block, steps)
-        }
-        (true, false, false, true) => advance_with::<L, true, false, false, true>(p, block, steps),
-        (false, true, false, true) => advance_with::<L, false, true, false, true>(p, block, steps),
-        (true, true, false, true) => advance_with::<L, true, true, false, true>(p, block, steps),
-        (false, false, true, true) => advance_with::<L, false, false, true, true>(p, block, steps),
-        (true, false, true, true) => advance_with::<L, true, false, true, true>(p, block, steps),
-        (false, true, true, true) => advance_with::<L, false, true, true, true>(p, block, steps),
-        (true, true, true, true) => advance_with::<L, true, true, true, true>(p, block, steps),
+        (false, false, false, false) => C::run::<false, false, false, false>(p, block, steps),
+        (true, false, false, false) => C::run::<true, false, false, false>(p, block, steps),
+        (false, true, false, false) => C::run::<false, true, false, false>(p, block, steps),
+        (true, true, false, false) => C::run::<true, true, false, false>(p, block, steps),
+        (false, false, true, false) => C::run::<false, false, true, false>(p, block, steps),
+        (true, false, true, false) => C::run::<true, false, true, false>(p, block, steps),
+        (false, true, true, false) => C::run::<false, true, true, false>(p, block, steps),
+        (true, true, true, false) => C::run::<true, true, true, false>(p, block, steps),
+        (false, false, false, true) => C::run::<false, false, false, true>(p, block, steps),
+        (true, false, false, true) => C::run::<true, false, false, true>(p, block, steps),
+        (false, true, false, true) => C::run::<false, true, false, true>(p, block, steps),
+        (true, true, false, true) => C::run::<true, true, false, true>(p, block, steps),
+        (false, false, true, true) => C::run::<false, false, true, true>(p, block, steps),
+        (true, false, true, true) => C::run::<true, false, true, true>(p, block, steps),
+        (false, true, true, true) => C::run::<false, true, true, true>(p, block, steps),
+        (true, true, true, true) => C::run::<true, true, true, true>(p, block, steps),
+    }
+}
+
+/// How a lane type compiles the loop of each combination (`advance_with`). The AVX2 and
+/// AVX-512 kernels give each its own function: the sixteen inlined into one, as they were,
+/// ran the default sweep at 0.89x (f64 AVX2 on the 2-core AMD EPYC machine, alternated, 2e5
+/// samples, 1 thread; f32 at 0.96x): the register allocation of the one huge function
+/// spilled more in the hot loop.
+pub trait Loop<L: Lane> {
+    /// `advance_with::<L, DAMPERS, TERRAIN, THRUST, REGOLITH>`.
+    fn run<const DAMPERS: bool, const TERRAIN: bool, const THRUST: bool, const REGOLITH: bool>(
+        p: &Params<L>,
+        block: &mut Block<L>,
+        steps: u32,
+    ) -> Advanced;
+}
+
+/// `Loop` for lane types compiled for the target's own instruction set (the portable
+/// ones): each combination inlined where `advance` is, the sixteen in the one function
+/// (`#[inline(never)]`) of the lane type's `Kernel::advance`. Apart, the SSE2 kernel ran the
+/// default sweep at 0.93x of this (f64, on the AMD EPYC machine, alternated).
+pub struct PlainLoop;
+
+impl<L: Lane> Loop<L> for PlainLoop {
+    #[inline(always)]
+    fn run<const DAMPERS: bool, const TERRAIN: bool, const THRUST: bool, const REGOLITH: bool>(
+        p: &Params<L>,
+        block: &mut Block<L>,
+        steps: u32,
+    ) -> Advanced {
+        advance_with::<L, DAMPERS, TERRAIN, THRUST, REGOLITH>(p, block, steps)
     }
 }
 
@@ -349,7 +370,7 @@ pub fn advance<L: Lane>(p: &Params<L>, block: &mut Block<L>, steps: u32) -> Adva
 /// with (`THRUST`) or without a control loop, on regolith (`REGOLITH`) or the elastic
 /// surface.
 #[inline(always)]
-fn advance_with<
+pub fn advance_with<
     L: Lane,
     const DAMPERS: bool,
     const TERRAIN: bool,

@@ -2,8 +2,9 @@
 //! time.
 //!
 //! The binary is compiled for plain x86-64 (or whatever target it is built for); the
-//! kernels are compiled once more inside a function per instruction set that enables its
-//! features (`#[target_feature]`), and `Isa::detect` picks the widest this CPU has. Nothing
+//! kernels are compiled once more inside functions per instruction set that enable its
+//! features (`#[target_feature]`; one per combination of dampers, terrain, thrust and
+//! regolith, `step::Loop`), and `Isa::detect` picks the widest this CPU has. Nothing
 //! outside those functions uses an instruction the CPU may lack, so the same binary runs on
 //! any x86-64 machine.
 //!
@@ -42,7 +43,8 @@ macro_rules! x86_features {
 
 /// The kernel of lane type `$lane` (named `$name`, multiply-adds fused), compiled for the
 /// CPU features `$features` (a string literal, as `#[target_feature]` takes it): `advance`
-/// (`step::advance`, its loop and everything in it compiled for those features), and the
+/// (`step::advance`, each combination's loop and everything in it compiled for those
+/// features), and the
 /// lane type's `Kernel`, `Debug` and `PartialEq`.
 #[cfg(target_arch = "x86_64")]
 macro_rules! compiled_kernel {
@@ -56,8 +58,28 @@ macro_rules! compiled_kernel {
                 block: &mut Block<Self>,
                 steps: u32,
             ) -> crate::step::Advanced {
+                crate::step::advance::<Self, Compiled>(p, block, steps)
+            }
+        }
+
+        /// The loop of each combination (`step::Loop`) in `advance_with`, compiled for this
+        /// lane type's instruction set.
+        struct Compiled;
+
+        impl crate::step::Loop<$lane> for Compiled {
+            #[inline(always)]
+            fn run<
+                const DAMPERS: bool,
+                const TERRAIN: bool,
+                const THRUST: bool,
+                const REGOLITH: bool,
+            >(
+                p: &Params<$lane>,
+                block: &mut Block<$lane>,
+                steps: u32,
+            ) -> crate::step::Advanced {
                 // A value of this type exists only where `available()` held (see `Isa`).
-                unsafe { advance(p, block, steps) }
+                unsafe { advance_with::<DAMPERS, TERRAIN, THRUST, REGOLITH>(p, block, steps) }
             }
         }
 
@@ -73,17 +95,22 @@ macro_rules! compiled_kernel {
             }
         }
 
-        /// `step::advance` compiled for this lane type's instruction set.
+        /// `step::advance_with` compiled for this lane type's instruction set.
         ///
         /// # Safety
         /// The CPU must have the features of `FEATURES` (`available()`).
         #[target_feature(enable = $features)]
-        unsafe fn advance(
+        unsafe fn advance_with<
+            const DAMPERS: bool,
+            const TERRAIN: bool,
+            const THRUST: bool,
+            const REGOLITH: bool,
+        >(
             p: &Params<$lane>,
             block: &mut Block<$lane>,
             steps: u32,
         ) -> crate::step::Advanced {
-            crate::step::advance(p, block, steps)
+            crate::step::advance_with::<$lane, DAMPERS, TERRAIN, THRUST, REGOLITH>(p, block, steps)
         }
     };
 }

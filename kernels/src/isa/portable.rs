@@ -29,7 +29,7 @@ macro_rules! portable_lane {
                 block: &mut Block<Self>,
                 steps: u32,
             ) -> crate::step::Advanced {
-                crate::step::advance(p, block, steps)
+                crate::step::advance::<Self, crate::step::PlainLoop>(p, block, steps)
             }
         }
 
