@@ -156,10 +156,11 @@ pub fn all_false<L: Lane>() -> L::Mask {
 /// `*to = mask.select(x, *to)`, written as one plain store of the whole lane value.
 ///
 /// Written as it reads, LLVM turns that load-select-store of one place into a masked store
-/// (`vmaskmovpd`/`vmaskmovps` under AVX2), which AMD's Zen cores run as a long microcoded
-/// sequence: with the four strut peaks written so, the default sweep on the 2-core AMD
-/// EPYC machine ran at 0.93x (f64) and 0.79x (f32) of this (alternated, 2e5 samples,
-/// 1 thread). A volatile store is kept as written: the blend in registers, then a store.
+/// (`vmaskmovpd`/`vmaskmovps` under AVX2), which the 2-core AMD EPYC machine runs slowly (a
+/// tenth of the kernel's profile fell on the strut peaks' eight): with those written so,
+/// the default sweep there ran at 0.93x (f64) and 0.79x (f32) of this (alternated, 2e5
+/// samples, 1 thread). A volatile store is kept as written: the blend in registers, then a
+/// store.
 #[inline(always)]
 pub fn select_into<L: Lane>(to: &mut L, mask: L::Mask, x: L) {
     let value = mask.select(x, *to);

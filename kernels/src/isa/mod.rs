@@ -44,8 +44,7 @@ macro_rules! x86_features {
 /// The kernel of lane type `$lane` (named `$name`, multiply-adds fused), compiled for the
 /// CPU features `$features` (a string literal, as `#[target_feature]` takes it): `advance`
 /// (`step::advance`, each combination's loop and everything in it compiled for those
-/// features), and the
-/// lane type's `Kernel`, `Debug` and `PartialEq`.
+/// features), and the lane type's `Kernel`, `Debug` and `PartialEq`.
 #[cfg(target_arch = "x86_64")]
 macro_rules! compiled_kernel {
     ($lane:ty, $name:literal, $features:literal) => {
