@@ -34,15 +34,17 @@ const INPUT: &str = "initial_tangential_speed_m_s";
 
 /// Whether each row of the sweep at `path` ended stable.
 fn stable(path: &std::path::Path) -> Vec<bool> {
-    use arrow_array::Array as _;
     let file = std::fs::File::open(path).expect("open the sweep");
     let reader = arrow_ipc::reader::FileReader::try_new(file, None).expect("an Arrow file");
     let mut out = Vec::new();
     for b in reader {
         let b = b.expect("a batch");
         let c = b.column_by_name("outcome").expect("an outcome column");
-        let c = arrow_array::cast::AsArray::as_string::<i32>(c.as_ref());
-        out.extend((0..c.len()).map(|i| c.value(i) == "stable"));
+        out.extend(
+            crate::common::texts(c.as_ref())
+                .iter()
+                .map(|o| o == "stable"),
+        );
     }
     out
 }

@@ -158,6 +158,23 @@ pub(crate) fn touchdown(dir: &Path, args: &[&str]) -> Run {
     }
 }
 
+/// The texts of a text column (`outcome`, `limits_broken`, a kept column), plain or coded
+/// into a dictionary, a null as "" (a panic if it is not text).
+pub(crate) fn texts(column: &dyn arrow_array::Array) -> Vec<String> {
+    let t = touchdown::output::read::Texts::of(column)
+        .unwrap_or_else(|| panic!("a column of {}, not text", column.data_type()));
+    t.iter().map(|v| v.unwrap_or("").to_string()).collect()
+}
+
+/// The texts of column `name` over `batches` (a panic if a batch lacks it).
+pub(crate) fn batch_texts(batches: &[arrow_array::RecordBatch], name: &str) -> Vec<String> {
+    let columns = batches.iter().map(|b| {
+        b.column_by_name(name)
+            .unwrap_or_else(|| panic!("no column {name}"))
+    });
+    columns.flat_map(|c| texts(c.as_ref())).collect()
+}
+
 /// Column `name` of the Arrow file at `path`, as `f64` (`None` if it has no such column).
 pub(crate) fn arrow_column(path: &Path, name: &str) -> Option<Vec<f64>> {
     arrow_values::<arrow_array::types::Float64Type>(path, name)

@@ -106,11 +106,11 @@ fn columns(path: &Path) -> Columns {
                         .iter()
                         .map(|v| v.map_or(f64::NAN, f64::from)),
                 ),
-                DataType::Utf8 => c.texts.entry(name).or_default().extend(
-                    a.as_string::<i32>()
-                        .iter()
-                        .map(|v| v.unwrap_or("").to_string()),
-                ),
+                DataType::Utf8 | DataType::Dictionary(..) => c
+                    .texts
+                    .entry(name)
+                    .or_default()
+                    .extend(crate::common::texts(a.as_ref())),
                 _ => {}
             }
         }

@@ -182,17 +182,15 @@ fn soils_of_any_exponent_and_unloading_modulus_never_give_energy() {
         assert_eq!(run.code, Some(0), "{run}");
     }
     let bounces = |name: &str| {
-        use arrow_array::Array as _;
         let file = std::fs::File::open(dir.join(&format!("{name}.arrow"))).unwrap();
         let mut n = 0;
         for b in arrow_ipc::reader::FileReader::try_new(file, None).unwrap() {
             let b = b.unwrap();
             let o = b.column_by_name("outcome").unwrap();
-            let o = o
-                .as_any()
-                .downcast_ref::<arrow_array::StringArray>()
-                .unwrap();
-            n += (0..o.len()).filter(|i| o.value(*i) == "bouncing").count();
+            n += crate::common::texts(o.as_ref())
+                .iter()
+                .filter(|o| *o == "bouncing")
+                .count();
         }
         n
     };

@@ -4,7 +4,7 @@
 //! convex hull, whatever their numbers.
 
 use crate::common::{SET_DOWN, TempDir, arrow_column, arrow_u32s, set_down_lines, touchdown};
-use arrow_array::{Array, ArrayRef, RecordBatch, StringArray, UInt32Array};
+use arrow_array::{Array, ArrayRef, RecordBatch, UInt32Array};
 use std::path::Path;
 
 /// Runs `touchdown sweep` of `scenario` in `dir` into `out`, and panics, showing the run,
@@ -277,13 +277,9 @@ fn listing_the_legs_in_another_order_changes_only_their_numbers() {
             .clone()
     };
     let outcomes = of(&a, "outcome");
-    let outcomes = outcomes
-        .as_any()
-        .downcast_ref::<StringArray>()
-        .expect("text");
+    let outcomes = crate::common::texts(outcomes.as_ref());
     assert!(
-        (0..outcomes.len()).any(|i| outcomes.value(i) == "stable")
-            && (0..outcomes.len()).any(|i| outcomes.value(i) == "tipped"),
+        outcomes.iter().any(|o| o == "stable") && outcomes.iter().any(|o| o == "tipped"),
         "a sweep with both outcomes"
     );
     let mut leg_columns = 0;
@@ -350,12 +346,7 @@ fn a_leg_inside_the_support_polygon_is_on_no_edge() {
         .expect("outcome")
         .1
         .clone();
-    let outcome = outcome
-        .as_any()
-        .downcast_ref::<StringArray>()
-        .expect("text")
-        .value(0)
-        .to_string();
+    let outcome = crate::common::texts(outcome.as_ref())[0].clone();
     let decided = arrow_column(&dir.join("s.arrow"), "decided_s").expect("decided_s")[0];
     assert!(
         outcome == "stable" && decided < 30.0,

@@ -142,7 +142,7 @@ fn report_counts_and_allowable_slopes_of_gentle_landings() {
 
 /// Slope, downhill azimuth relative to the lander, and whether it ended stable, per sample.
 fn read_samples(path: &std::path::Path) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
-    use arrow_array::{Array, Float64Array, StringArray};
+    use arrow_array::{Array, Float64Array};
     let reader =
         arrow_ipc::reader::FileReader::try_new(std::fs::File::open(path).unwrap(), None).unwrap();
     let (mut slopes, mut azimuths, mut stable) = (Vec::new(), Vec::new(), Vec::new());
@@ -158,11 +158,11 @@ fn read_samples(path: &std::path::Path) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
         };
         let (slope, azimuth, yaw) = (f("slope_deg"), f("downhill_azimuth_deg"), f("yaw_deg"));
         let outcome = b.column_by_name("outcome").unwrap();
-        let outcome = outcome.as_any().downcast_ref::<StringArray>().unwrap();
-        for i in 0..b.num_rows() {
+        let outcome = crate::common::texts(outcome.as_ref());
+        for (i, o) in outcome.iter().enumerate() {
             slopes.push(slope.value(i));
             azimuths.push((azimuth.value(i) - yaw.value(i)).rem_euclid(360.0));
-            stable.push(outcome.value(i) == "stable");
+            stable.push(o == "stable");
         }
     }
     (slopes, azimuths, stable)
@@ -239,7 +239,7 @@ fn report_refuses_what_is_not_a_sweep() {
 /// such section.
 #[test]
 fn report_gives_propellant_statistics_of_a_sweep_with_thrusters() {
-    use arrow_array::{Array, Float64Array, StringArray, UInt32Array};
+    use arrow_array::{Array, Float64Array, UInt32Array};
     let dir = TempDir::new("report_propellant");
     let scenario = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hold-down.toml"),
@@ -257,11 +257,11 @@ fn report_gives_propellant_statistics_of_a_sweep_with_thrusters() {
         let f = col("firings");
         let f = f.as_any().downcast_ref::<UInt32Array>().unwrap();
         let o = col("outcome");
-        let o = o.as_any().downcast_ref::<StringArray>().unwrap();
-        for i in 0..b.num_rows() {
+        let o = crate::common::texts(o.as_ref());
+        for (i, o) in o.into_iter().enumerate() {
             propellant.push(p.value(i));
             fired += usize::from(f.value(i) > 0);
-            let e = by_outcome.entry(o.value(i).to_string()).or_default();
+            let e = by_outcome.entry(o).or_default();
             e.0 += p.value(i);
             e.1 += 1;
         }

@@ -22,6 +22,7 @@ mod interrupt;
 mod lander;
 mod law_inputs;
 mod layers;
+mod lean_files;
 mod leg_numbers;
 mod outcome_rules;
 mod output_sets;

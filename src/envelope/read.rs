@@ -3,7 +3,7 @@
 //! left out, counted by why.
 
 use super::plane::Facing;
-use crate::output::read::{format_of, open, outcome_of};
+use crate::output::read::{Texts, format_of, open, outcome_of};
 use anyhow::{anyhow, bail};
 use arrow_array::cast::AsArray;
 use arrow_array::types::{
@@ -192,11 +192,11 @@ impl Samples {
             float("slope_deg")?,
         );
         let touched = b.column_by_name(TOUCHED);
-        let outcome = column("outcome")?
-            .as_string_opt::<i32>()
+        let outcome = column("outcome")?.as_ref();
+        let outcome = Texts::of(outcome)
             .ok_or_else(|| anyhow!("{}: the outcome column is not text", path.display()))?;
         let broken = match b.column_by_name(LIMITS_BROKEN) {
-            Some(c) => Some(c.as_string_opt::<i32>().ok_or_else(|| {
+            Some(c) => Some(Texts::of(c.as_ref()).ok_or_else(|| {
                 anyhow!(
                     "{}: the column {LIMITS_BROKEN} is not text ({})",
                     path.display(),
@@ -229,20 +229,16 @@ impl Samples {
                 self.no_value += 1;
                 continue;
             }
-            let o = outcome_of(
-                if outcome.is_null(i) {
-                    ""
-                } else {
-                    outcome.value(i)
-                },
-                path,
-            )?;
+            let o = outcome_of(outcome.get(i).unwrap_or(""), path)?;
             self.x.push(xs[i]);
             self.y.push(ys[i]);
             self.slope_deg.push(slope[i]);
             self.outcome.push(o as u8);
-            self.broke
-                .push(broken.is_some_and(|c| !c.is_null(i) && !c.value(i).is_empty()));
+            self.broke.push(
+                broken
+                    .as_ref()
+                    .is_some_and(|c| c.get(i).is_some_and(|t| !t.is_empty())),
+            );
             self.facing.push(match legs {
                 Some(l) => Facing::of(relative[i], l),
                 None => Facing::All,

@@ -1,7 +1,7 @@
 //! Any touchdown file read back as named columns (a sweep, shard, trace or study file, Arrow
 //! IPC or Parquet, or a sweep held in memory), for what draws or tabulates it.
 
-use crate::output::read::{Batches, format_of, open, outcome_of};
+use crate::output::read::{Batches, Texts, format_of, open, outcome_of};
 use anyhow::anyhow;
 use arrow_array::cast::AsArray;
 use arrow_array::types::Float64Type;
@@ -57,7 +57,7 @@ impl Table {
             for (field, array) in b.schema().fields().iter().zip(b.columns()) {
                 let name = field.name();
                 if name == "outcome" {
-                    let s = array.as_string_opt::<i32>().ok_or_else(|| {
+                    let s = Texts::of(array.as_ref()).ok_or_else(|| {
                         anyhow!("{}: the outcome column is not text", path.display())
                     })?;
                     for v in s.iter() {
@@ -68,7 +68,7 @@ impl Table {
                 if !wanted(name) {
                     continue;
                 }
-                if let Some(s) = array.as_string_opt::<i32>() {
+                if let Some(s) = Texts::of(array.as_ref()) {
                     texts
                         .entry(name.clone())
                         .or_default()

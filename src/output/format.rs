@@ -23,3 +23,38 @@ impl Format {
         }
     }
 }
+
+/// How touchdown writes Parquet: zstd (level 1) on every column; a dictionary only where
+/// values repeat (text, small counts such as `bounces`, a tile, a leg), not on floating-point
+/// or 64-bit integer columns, whose values (measurements, seeds, sample indices) seldom
+/// repeat, so that a dictionary page costs more than it saves. Measured on a default sweep
+/// of 1e5 samples: 307 bytes a sample against 395 with snappy and a dictionary on every
+/// column (the Arrow file: 548). `max_rows` caps the rows of a row group.
+#[must_use]
+pub fn parquet_properties(
+    schema: &arrow_schema::Schema,
+    max_rows: Option<usize>,
+) -> parquet::file::properties::WriterProperties {
+    use arrow_schema::DataType;
+    use parquet::basic::{Compression, ZstdLevel};
+    use parquet::schema::types::ColumnPath;
+    let mut props = parquet::file::properties::WriterProperties::builder()
+        .set_compression(Compression::ZSTD(ZstdLevel::default()))
+        .set_created_by(super::ENGINE.to_string());
+    if let Some(rows) = max_rows {
+        props = props.set_max_row_group_row_count(Some(rows));
+    }
+    for field in schema.fields() {
+        let repeats = !matches!(
+            field.data_type(),
+            DataType::Float16
+                | DataType::Float32
+                | DataType::Float64
+                | DataType::Int64
+                | DataType::UInt64
+        );
+        props =
+            props.set_column_dictionary_enabled(ColumnPath::from(field.name().as_str()), repeats);
+    }
+    props.build()
+}

@@ -12,8 +12,9 @@ mod guard;
 use super::format::{BATCH_ROWS, Format};
 use crate::reference::Outcome;
 use anyhow::{anyhow, bail};
-use arrow_array::RecordBatch;
-use arrow_schema::SchemaRef;
+use arrow_array::cast::AsArray;
+use arrow_array::{Array, RecordBatch, StringArray};
+use arrow_schema::{DataType, SchemaRef};
 pub use check::{arrow_file, compressed_sizes, parquet_chunks};
 pub use guard::{damaged, guarded};
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
@@ -77,6 +78,66 @@ pub fn open(path: &Path, format: Format) -> anyhow::Result<(SchemaRef, Batches)>
 /// The outcome named `name` in the outcome column of the file at `path`.
 pub fn outcome_of(name: &str, path: &Path) -> anyhow::Result<Outcome> {
     Outcome::from_name(name).ok_or_else(|| anyhow!("{}: unknown outcome {name:?}", path.display()))
+}
+
+/// A text column of a file, as written: plain (`Utf8`, as sweeps before the coded outcome
+/// wrote `outcome` and `limits_broken`) or coded into a dictionary of its texts.
+pub struct Texts<'a> {
+    names: &'a StringArray,
+    /// For a coded column: the column (for its nulls) and each row's index into `names`.
+    coded: Option<(&'a dyn Array, Vec<usize>)>,
+}
+
+impl<'a> Texts<'a> {
+    /// The texts of `array`, if it is a column of text (plain or coded); `None` otherwise.
+    #[must_use]
+    pub fn of(array: &'a dyn Array) -> Option<Texts<'a>> {
+        match array.data_type() {
+            DataType::Utf8 => Some(Texts {
+                names: array.as_string::<i32>(),
+                coded: None,
+            }),
+            DataType::Dictionary(_, value) if **value == DataType::Utf8 => {
+                let d = array.as_any_dictionary_opt()?;
+                Some(Texts {
+                    names: d.values().as_string::<i32>(),
+                    coded: Some((array, d.normalized_keys())),
+                })
+            }
+            _ => None,
+        }
+    }
+
+    /// Rows.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        match &self.coded {
+            Some((_, keys)) => keys.len(),
+            None => self.names.len(),
+        }
+    }
+
+    /// Whether it has no rows.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The text of row `i` (`None` where it is null).
+    #[must_use]
+    pub fn get(&self, i: usize) -> Option<&'a str> {
+        let at = match &self.coded {
+            Some((array, _)) if array.is_null(i) => return None,
+            Some((_, keys)) => keys[i],
+            None => i,
+        };
+        (!self.names.is_null(at)).then(|| self.names.value(at))
+    }
+
+    /// The text of each row, in order (`None` where it is null).
+    pub fn iter(&self) -> impl Iterator<Item = Option<&'a str>> + '_ {
+        (0..self.len()).map(|i| self.get(i))
+    }
 }
 
 /// Record batches as a reader yields them; an error names the file.

@@ -6,11 +6,12 @@
 use super::ENGINE;
 use super::format::Format;
 use super::interrupted_path;
+use super::read::Texts;
 use super::read::{format_of, open};
 use super::sweep::{Rebatcher, SHARD_KEYS, SweepWriter};
 use crate::sweep::Shard;
 use anyhow::{anyhow, bail};
-use arrow_array::{Array, StringArray, UInt64Array};
+use arrow_array::{Array, UInt64Array};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -135,7 +136,14 @@ impl Interrupted {
         writer: &mut SweepWriter,
     ) -> anyhow::Result<(KeptCounts, u64)> {
         let kept = self.kept_rows();
-        let (_, batches) = open(&self.path, self.format)?;
+        let (schema, batches) = open(&self.path, self.format)?;
+        if schema.fields() != writer.schema().fields() {
+            bail!(
+                "{} does not hold the columns of a sweep of this engine (another version?); \
+                 run the sweep again",
+                self.path.display()
+            );
+        }
         let mut rebatcher = Rebatcher::new(writer.schema().clone());
         let (mut counts, mut steps) = (HashMap::new(), 0u64);
         let mut next = first;
@@ -150,12 +158,12 @@ impl Interrupted {
                     .ok_or_else(|| anyhow!("{}: no column {name}", self.path.display()))
             };
             let samples = column("sample")?.as_any().downcast_ref::<UInt64Array>();
-            let outcomes = column("outcome")?.as_any().downcast_ref::<StringArray>();
+            let outcomes = Texts::of(column("outcome")?.as_ref());
             let step_counts = column("steps")?.as_any().downcast_ref::<UInt64Array>();
             let limits = b
                 .column_by_name(super::sweep::LIMITS_COLUMN)
-                .map(|c| c.as_any().downcast_ref::<StringArray>());
-            let (Some(samples), Some(outcomes), Some(step_counts), None | Some(Some(_))) =
+                .map(|c| Texts::of(c.as_ref()));
+            let (Some(samples), Some(outcomes), Some(step_counts), limits @ (None | Some(Some(_)))) =
                 (samples, outcomes, step_counts, limits)
             else {
                 bail!("{}: a column has the wrong type", self.path.display());
@@ -171,7 +179,7 @@ impl Interrupted {
                 next += 1;
             }
             for (i, o) in outcomes.iter().enumerate() {
-                let broken = limits.map_or("", |l| l.value(i));
+                let broken = limits.as_ref().and_then(|l| l.get(i)).unwrap_or("");
                 let key = (o.unwrap_or_default().to_string(), broken.to_string());
                 *counts.entry(key).or_insert(0) += 1;
             }

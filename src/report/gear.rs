@@ -3,16 +3,17 @@
 //! broke each limit.
 
 use super::numbers::Share;
+use crate::output::read::Texts;
 use crate::output::sweep::SweepBatch;
 use crate::reference::Outcome;
 use crate::scenario::{Broken, LIMIT_NAMES, Limits, Scenario};
-use arrow_array::{StringArray, UInt32Array};
+use arrow_array::UInt32Array;
 use std::fmt::Write as _;
 
 /// The columns of bottomed dampers and broken limits, where the file has them.
 pub(super) struct GearColumns<'a> {
     bottomed: Option<&'a UInt32Array>,
-    broken: Option<&'a StringArray>,
+    broken: Option<Texts<'a>>,
 }
 
 impl<'a> GearColumns<'a> {
@@ -67,9 +68,9 @@ pub(super) struct Gear {
 impl Gear {
     pub(super) fn push(&mut self, c: &GearColumns<'_>, i: usize, o: Outcome) {
         self.bottomed += c.bottomed.map_or(0, |b| u64::from(b.value(i) > 0));
-        if let Some(broken) = c.broken {
+        if let Some(broken) = &c.broken {
             let counts = self.limits.get_or_insert_default();
-            counts.add(o, Broken::parse(broken.value(i)), 1);
+            counts.add(o, Broken::parse(broken.get(i).unwrap_or("")), 1);
         }
     }
 

@@ -247,10 +247,7 @@ pub fn write(path: &Path, format: Format, site: &Site, about: &About<'_>) -> any
             w.finish().map_err(|e| failed(e.into()))?
         }
         Format::Parquet => {
-            let props = parquet::file::properties::WriterProperties::builder()
-                .set_compression(parquet::basic::Compression::SNAPPY)
-                .set_created_by(ENGINE.to_string())
-                .build();
+            let props = crate::output::format::parquet_properties(&schema, None);
             let mut w = parquet::arrow::ArrowWriter::try_new(out, schema.clone(), Some(props))
                 .map_err(|e| failed(e.into()))?;
             w.write(&batch).map_err(|e| failed(e.into()))?;

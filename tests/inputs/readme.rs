@@ -2,7 +2,6 @@
 
 use super::{assert_same_columns, metadata, read_sweep, take};
 use crate::common::{TempDir, touchdown};
-use arrow_array::{Array, StringArray};
 use std::path::Path;
 
 /// The `sh` block of the README's section `heading`.
@@ -66,14 +65,9 @@ fn the_readme_python_lines_make_tables_that_replay() {
     );
     // Tipped again, every one, with the same results.
     let whole = read_sweep(&dir.join("sweep.arrow"));
-    let outcome = whole
-        .column_by_name("outcome")
-        .unwrap()
-        .as_any()
-        .downcast_ref::<StringArray>()
-        .unwrap();
+    let outcome = crate::common::texts(whole.column_by_name("outcome").unwrap().as_ref());
     let tipped: Vec<u64> = (0..whole.num_rows())
-        .filter(|&i| outcome.value(i) == "tipped")
+        .filter(|&i| outcome[i] == "tipped")
         .map(|i| i as u64)
         .collect();
     assert!(tipped.len() > 100, "{} tipped", tipped.len());

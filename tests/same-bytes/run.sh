@@ -69,6 +69,16 @@
 # (from report's line) with the new one makes it equal. Without pyarrow such an Arrow or
 # Parquet file is DIFFERENT.
 #
+# Encodings. An Arrow or Parquet file that is not equal so is "same values, encoded
+# otherwise" where its columns are the same bit for bit once each coded (dictionary) column
+# is read as its values, the schemas are the same but for those columns' types, and the
+# batches or row groups hold the same rows; the line names the columns coded otherwise and
+# whether Parquet's encodings or compression changed. A change of encoding is not a move of
+# code: such files fail the run unless SAME_BYTES_ENCODINGS=allow (then the summary counts
+# them apart). Since the coded outcome (engine 0.6, after f05d3a3): `outcome` and
+# `limits_broken` are coded, Parquet is zstd without dictionaries on floating-point and
+# 64-bit integer columns.
+#
 # Run time on 2 cores: 55-95 s per binary (the upper end while a cargo build shared the
 # cores), 2-3 min in all with the comparison. No scenario is near 30 s at 2000 samples: the
 # slowest commands are boundary (7-11 s) and the two rough sweeps (5.5-11 s each), all
@@ -474,6 +484,56 @@ def bits(part):
         w.write_table(table)
     return sink.getvalue().to_pybytes()
 
+def plain_type(t):
+    return t.value_type if pa.types.is_dictionary(t) else t
+
+def plain(schema):
+    # The schema with each coded (dictionary) column as its texts.
+    return pa.schema([f.with_type(plain_type(f.type)) for f in schema], schema.metadata)
+
+def as_table(part):
+    return pa.Table.from_batches([part]) if isinstance(part, pa.RecordBatch) else part
+
+def texts(column):
+    return column.cast(plain_type(column.type)).to_pylist()
+
+def encoding_changes(a, b):
+    # What differs where the values do not: columns coded otherwise, Parquet's encodings or
+    # compression; None if the values differ too (or the schemas do otherwise).
+    changes = []
+    sa, sb = without_version(a[1]), without_version(b[1])
+    pa_, pb_ = plain(sa), plain(sb)
+    if pa_.serialize().to_pybytes() != pb_.serialize().to_pybytes() or a[2] != b[2]:
+        return None
+    coded = [f"{x.name} {x.type} -> {y.type}" for x, y in zip(sa, sb) if x.type != y.type]
+    if coded:
+        changes.append("coded otherwise: " + ", ".join(coded))
+    if a[0] == "parquet":
+        if [r for r, _ in a[3]] != [r for r, _ in b[3]]:
+            return None
+        if a[3] != b[3]:
+            ca = {c for _, cols in a[3] for c, _ in cols}
+            cb = {c for _, cols in b[3] for c, _ in cols}
+            changes.append("Parquet encodings" + (f", compression {'/'.join(sorted(ca))} -> "
+                                                  f"{'/'.join(sorted(cb))}" if ca != cb else ""))
+    elif a[3] != b[3]:
+        return None
+    # The columns coded on either side compared as texts; all others bit for bit where
+    # they hold a value (what a Parquet reader puts under a null depends on the encoding).
+    recoded = [x.name for x, y in zip(sa, sb) if x.type != y.type]
+    for x, y in zip(a[4], b[4]):
+        x, y = as_table(x), as_table(y)
+        for n in x.column_names:
+            cx, cy = x.column(n), y.column(n)
+            if n in recoded:
+                same = texts(cx) == texts(cy)
+            else:
+                same = (cx.is_null().to_pylist() == cy.is_null().to_pylist()
+                        and bits(pa.table({n: cx.drop_null()})) == bits(pa.table({n: cy.drop_null()})))
+            if not same:
+                return None
+    return changes or None
+
 a, b = (load(p) for p in sys.argv[1:3])
 why = []
 if a[0] != b[0]:
@@ -499,6 +559,10 @@ else:
 ea = (a[1].metadata or {}).get(VERSION_KEY, b"(none)").decode()
 eb = (b[1].metadata or {}).get(VERSION_KEY, b"(none)").decode()
 if why:
+    changes = encoding_changes(a, b) if a[0] == b[0] else None
+    if changes:
+        print("; ".join(changes) + (f"; {ea} / {eb}" if ea != eb else ""))
+        sys.exit(3)
     print("; ".join(why))
     sys.exit(1)
 print(f"{ea} / {eb}")
@@ -518,7 +582,7 @@ text_equal_but_version() {
 }
 
 compare_dirs() {
-    local n_cmp=0 n_eq=0 n_ver=0 n_diff=0 n_only=0 f a b why= kind ok
+    local n_cmp=0 n_eq=0 n_ver=0 n_enc=0 n_diff=0 n_only=0 f a b why= kind ok
     # File names of both folders, sorted and joined.
     comm -3 <(cd "$work/old" && find . -type f | sort) <(cd "$work/new" && find . -type f | sort) \
         >"$work/logs/only-in-one.txt" || true
@@ -545,7 +609,8 @@ compare_dirs() {
         esac
         ok=1
         if [[ $kind == arrow && $have_pyarrow == 1 ]]; then
-            why=$(arrow_equal_but_version "$a" "$b" 2>&1) && ok=0
+            why=$(arrow_equal_but_version "$a" "$b" 2>&1) && ok=0 || ok=$?
+            [[ $ok == 3 ]] || [[ $ok == 0 ]] || ok=1
             why=${why##*$'\n'}   # the last line: a python error's own
         elif [[ $kind == arrow ]]; then
             why="no python with pyarrow to look inside"
@@ -553,6 +618,9 @@ compare_dirs() {
         if [[ $ok == 0 ]]; then
             echo "equal but the version  $f  ($why)"
             n_eq=$((n_eq + 1)); n_ver=$((n_ver + 1))
+        elif [[ $ok == 3 ]]; then
+            echo "same values, encoded otherwise  $f  ($why)"
+            n_enc=$((n_enc + 1))
         elif [[ $kind == other ]] && text_equal_but_version "$a" "$b"; then
             echo "equal but the version  $f"
             n_eq=$((n_eq + 1)); n_ver=$((n_ver + 1))
@@ -564,8 +632,12 @@ compare_dirs() {
     done < <(comm -12 <(cd "$work/old" && find . -type f | sort) \
                       <(cd "$work/new" && find . -type f | sort) | sed 's|^\./||')
     echo
-    echo "$n_cmp files compared, $n_eq equal, $n_diff different"
+    echo "$n_cmp files compared, $n_eq equal, $n_enc the same values encoded otherwise, $n_diff different"
     [[ $n_ver -eq 0 ]] || echo "($n_ver of the equal ones differ in the engine version alone: $old_engine / $new_engine)"
+    if [[ $n_enc -gt 0 && ${SAME_BYTES_ENCODINGS:-} != allow ]]; then
+        echo "($n_enc files hold the same values encoded otherwise: a change of encoding, not a move of code; SAME_BYTES_ENCODINGS=allow accepts it)"
+        n_diff=$((n_diff + n_enc))
+    fi
     [[ $n_only -eq 0 ]] || echo "$n_only files in one folder only"
     [[ $have_pyarrow == 1 ]] || echo "(no python with pyarrow: an Arrow or Parquet file that differs in its bytes is DIFFERENT even if only its engine version does)"
     [[ $n_diff -eq 0 && $n_only -eq 0 ]]

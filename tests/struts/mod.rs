@@ -3,7 +3,7 @@
 //! against its traces, bottomed cartridges and broken limits counted by `report`.
 
 use crate::common::TempDir;
-use arrow_array::{Array, BooleanArray, Float64Array, RecordBatch, StringArray, UInt32Array};
+use arrow_array::{Array, BooleanArray, Float64Array, RecordBatch, UInt32Array};
 use arrow_ipc::reader::FileReader;
 use std::path::Path;
 
@@ -79,7 +79,7 @@ impl Columns {
     }
 
     fn strings(&self, name: &str) -> Vec<String> {
-        self.values(name, |a: &StringArray, i| a.value(i).to_string())
+        crate::common::batch_texts(&self.batches, name)
     }
 
     fn meta(&self, key: &str) -> &str {

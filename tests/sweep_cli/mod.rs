@@ -6,7 +6,7 @@
 //! system temp folder, removed when the test passes and kept when it fails.
 
 use crate::common::{Run, TempDir, read_bytes, touchdown};
-use arrow_array::{Array, Float64Array, RecordBatch, StringArray, UInt32Array, UInt64Array};
+use arrow_array::{Array, Float64Array, RecordBatch, UInt32Array, UInt64Array};
 use arrow_ipc::reader::FileReader;
 use arrow_schema::SchemaRef;
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
@@ -233,7 +233,7 @@ impl SweepFile {
     }
 
     pub(crate) fn strings(&self, name: &str) -> Vec<String> {
-        self.values(name, |a: &StringArray, i| a.value(i).to_string())
+        crate::common::batch_texts(&self.batches, name)
     }
 
     /// Outcome -> count in the file, zeros included (but `held`'s, listed only for sweeps

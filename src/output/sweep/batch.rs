@@ -2,17 +2,79 @@
 
 use super::schema::LIMITS_COLUMN;
 use crate::control::ControlSummary;
+use crate::output::read::Texts;
+use crate::reference::Outcome;
 use crate::reference::outcome::LegSummary;
 use crate::reference::touchdown::{Met, Touchdown};
-use crate::scenario::INPUT_FIELDS;
+use crate::scenario::{Broken, INPUT_FIELDS, LIMIT_NAMES};
 use crate::sweep::Row;
-use arrow_array::builder::{
-    BooleanBuilder, Float64Builder, StringBuilder, UInt32Builder, UInt64Builder,
-};
-use arrow_array::{ArrayRef, RecordBatch};
+use arrow_array::builder::{BooleanBuilder, Float64Builder, UInt32Builder, UInt64Builder};
+use arrow_array::cast::AsArray;
+use arrow_array::types::Int8Type;
+use arrow_array::{ArrayRef, DictionaryArray, Int8Array, RecordBatch, StringArray};
 use arrow_schema::SchemaRef;
 use glam::DVec3;
-use std::sync::Arc;
+use std::sync::{Arc, LazyLock};
+
+/// The dictionary of the `outcome` column (`schema::coded_texts`): every outcome's name,
+/// at its code (its place in `Outcome::ALL`).
+static OUTCOME_NAMES: LazyLock<ArrayRef> = LazyLock::new(|| {
+    Arc::new(StringArray::from_iter_values(
+        Outcome::ALL.map(Outcome::name),
+    ))
+});
+
+/// The dictionary of the `limits_broken` column: every set of broken limits as
+/// `Broken::names` writes it, at its bits.
+static LIMIT_SETS: LazyLock<ArrayRef> = LazyLock::new(|| {
+    Arc::new(StringArray::from_iter_values(
+        (0..1u8 << LIMIT_NAMES.len()).map(|bits| Broken(bits).names()),
+    ))
+});
+
+/// `b` with its coded columns (`outcome`, `limits_broken`) coded into this engine's
+/// dictionaries, as the batches a sweep makes: for a batch read back from a file (a Parquet
+/// reader rebuilds each row group's dictionary from the texts it holds) or joined from
+/// batches of several (`merge`, `--resume`), since an Arrow IPC file holds one dictionary
+/// per column.
+pub fn recoded(b: &RecordBatch) -> anyhow::Result<RecordBatch> {
+    type Code = fn(&str) -> Option<i8>;
+    let mut columns = b.columns().to_vec();
+    for (column, field) in columns.iter_mut().zip(b.schema().fields()) {
+        let (names, code): (&ArrayRef, Code) = match field.name().as_str() {
+            "outcome" => (&OUTCOME_NAMES, |t| Outcome::from_name(t).map(|o| o as i8)),
+            LIMITS_COLUMN => (&LIMIT_SETS, |t| {
+                let set = Broken::parse(t);
+                (set.names() == t).then_some(set.0 as i8)
+            }),
+            _ => continue,
+        };
+        if column
+            .as_any_dictionary_opt()
+            .is_some_and(|d| Arc::ptr_eq(d.values(), names))
+        {
+            continue;
+        }
+        let name = field.name();
+        let texts = Texts::of(column.as_ref())
+            .ok_or_else(|| anyhow::anyhow!("the column {name} is not text"))?;
+        let codes = texts.iter().map(|t| {
+            t.and_then(code)
+                .ok_or_else(|| anyhow::anyhow!("{t:?} in the column {name} is none of its texts"))
+        });
+        *column = coded(codes.collect::<anyhow::Result<_>>()?, names)?;
+    }
+    Ok(RecordBatch::try_new(b.schema(), columns)?)
+}
+
+/// A coded text column (`schema::coded_texts`) of `codes` into `names`.
+fn coded(codes: Vec<i8>, names: &ArrayRef) -> anyhow::Result<ArrayRef> {
+    let codes = Int8Array::from(codes);
+    Ok(Arc::new(DictionaryArray::<Int8Type>::try_new(
+        codes,
+        names.clone(),
+    )?))
+}
 
 /// The value of the control column `name` (`CONTROL_COLUMNS`) in a lander's summary of its
 /// control loop (firings as a number), for sweep rows and traces alike; `None` for a name
@@ -174,10 +236,8 @@ pub fn batch(
     cols.push(u32s(&|r| r.sample.terrain_tile));
     cols.push(f64s(&|r| r.sample.terrain_offset_m[0]));
     cols.push(f64s(&|r| r.sample.terrain_offset_m[1]));
-    let mut outcome = StringBuilder::with_capacity(n, n * 8);
-    rows.iter()
-        .for_each(|r| outcome.append_value(r.summary.outcome.name()));
-    cols.push(Arc::new(outcome.finish()));
+    let outcomes = rows.iter().map(|r| r.summary.outcome as i8).collect();
+    cols.push(coded(outcomes, &OUTCOME_NAMES)?);
     cols.push(f64s(&|r| r.summary.decided_s));
     cols.push(u64s(&|r| r.summary.steps));
     cols.push(f64s(&|r| r.summary.final_tilt_deg));
@@ -205,11 +265,12 @@ pub fn batch(
         cols.push(match field.name().as_str() {
             "firings" => u32s(&|r| control(r).firings),
             LIMITS_COLUMN => {
-                let mut b = StringBuilder::with_capacity(n, n * 8);
-                for r in rows {
-                    b.append_value(r.summary.limits_broken.unwrap_or_default().names());
-                }
-                Arc::new(b.finish())
+                let sets = rows.iter();
+                coded(
+                    sets.map(|r| r.summary.limits_broken.unwrap_or_default().0 as i8)
+                        .collect(),
+                    &LIMIT_SETS,
+                )?
             }
             other if let Some((k, value)) = regolith_value(other) => {
                 f64s(&|r| value(&r.summary.legs[k]))

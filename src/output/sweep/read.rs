@@ -4,10 +4,10 @@
 //! sensitivity, study, trace --sweep); and a sweep held in memory (`SweepSource::Memory`:
 //! Python's), read as a file is.
 
-use crate::output::read::{Batches, format_of, open, outcome_of};
+use crate::output::read::{Batches, Texts, format_of, open, outcome_of};
 use crate::reference::Outcome;
 use anyhow::{anyhow, bail};
-use arrow_array::{Array, Float64Array, RecordBatch, StringArray, UInt32Array, UInt64Array};
+use arrow_array::{Array, Float64Array, RecordBatch, UInt32Array, UInt64Array};
 use arrow_schema::SchemaRef;
 use std::path::{Path, PathBuf};
 
@@ -174,9 +174,12 @@ impl SweepBatch<'_> {
         self.typed(name, "UInt32")
     }
 
-    /// A Utf8 column (`limits_broken`), by name.
-    pub fn strs(&self, name: &str) -> anyhow::Result<&StringArray> {
-        self.typed(name, "Utf8")
+    /// A text column (`limits_broken`), plain or coded, by name.
+    pub fn strs(&self, name: &str) -> anyhow::Result<Texts<'_>> {
+        self.batch
+            .column_by_name(name)
+            .and_then(|c| Texts::of(c.as_ref()))
+            .ok_or_else(|| anyhow!("{}: no text column {name}", self.path.display()))
     }
 
     /// The Float64 columns `leg{k}_{what}` of legs 0 to `legs - 1`.
@@ -191,10 +194,11 @@ impl SweepBatch<'_> {
         let names = self
             .batch
             .column_by_name("outcome")
-            .and_then(|c| c.as_any().downcast_ref::<StringArray>())
+            .and_then(|c| Texts::of(c.as_ref()))
             .ok_or_else(|| anyhow!("{}: no outcome column", self.path.display()))?;
-        (0..names.len())
-            .map(|i| outcome_of(names.value(i), self.path))
+        names
+            .iter()
+            .map(|name| outcome_of(name.unwrap_or(""), self.path))
             .collect()
     }
 }

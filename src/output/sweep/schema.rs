@@ -85,7 +85,7 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
     if has_limits(info.scenario_toml) {
         fields.push(f(
             LIMITS_COLUMN,
-            DataType::Utf8,
+            coded_texts(),
             "1",
             "the scenario's [limits] the sample broke, among axial_force, side_force, \
              acceleration and stroke_margin in that order, joined by commas (empty: none)",
@@ -124,6 +124,14 @@ pub fn schema(legs: usize, info: &SweepInfo<'_>) -> SchemaRef {
     fields.extend(info.kept.iter().map(|f| f.as_ref().clone()));
     let meta = metadata(info);
     Arc::new(Schema::new_with_metadata(fields, meta))
+}
+
+/// The type of a text column of few values (`outcome`, `limits_broken`): per row a code
+/// into one dictionary of every text the column can hold, the same in every batch and file
+/// (pandas reads it as a categorical, polars as a Categorical, both compare it with text).
+#[must_use]
+pub fn coded_texts() -> DataType {
+    DataType::Dictionary(Box::new(DataType::Int8), Box::new(DataType::Utf8))
 }
 
 /// The fields of a sample's index, seed, inputs and terrain.
@@ -174,7 +182,7 @@ fn result_fields(controlled: bool) -> Vec<Field> {
     vec![
         f(
             "outcome",
-            DataType::Utf8,
+            coded_texts(),
             "1",
             pick(
                 "stable, tipped, sliding, bouncing or diverged",

@@ -2,10 +2,10 @@
 //! only when finished; the batches made (and, for Parquet, encoded) on any thread by a
 //! `BatchMaker`; and a rebatcher for files made of other files (merge, resume).
 
-use super::batch::batch;
+use super::batch::{batch, recoded};
 use super::schema::{SweepInfo, schema};
-use crate::output::format::{BATCH_ROWS, Format};
-use crate::output::{AtomicFile, ENGINE, IpcWriter, Out};
+use crate::output::format::{BATCH_ROWS, Format, parquet_properties};
+use crate::output::{AtomicFile, IpcWriter, Out};
 use crate::sweep::Row;
 use arrow_array::{Array, ArrayRef, Float64Array, RecordBatch, UInt32Array};
 use arrow_schema::SchemaRef;
@@ -120,11 +120,7 @@ impl SweepWriter {
         let sink = match format {
             Format::Arrow => Writer::Arrow(IpcWriter::new(&file, out, &writer.schema)?),
             Format::Parquet => {
-                let props = parquet::file::properties::WriterProperties::builder()
-                    .set_compression(parquet::basic::Compression::SNAPPY)
-                    .set_max_row_group_row_count(Some(BATCH_ROWS))
-                    .set_created_by(ENGINE.to_string())
-                    .build();
+                let props = parquet_properties(&writer.schema, Some(BATCH_ROWS));
                 let (file, row_groups) =
                     ArrowWriter::try_new(out, writer.schema.clone(), Some(props))?
                         .into_serialized_writer()?;
@@ -241,8 +237,10 @@ impl SweepWriter {
         &self.schema
     }
 
-    /// Writes a whole batch as it is (for `merge`, which cuts its batches itself).
+    /// Writes a whole batch as it is (for `merge`, which cuts its batches itself), its coded
+    /// columns coded as this writer's own batches (`batch::recoded`).
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
+        let b = &recoded(b)?;
         let Some(row_groups) = self.row_groups() else {
             return self.write_made(Made {
                 batch: b.clone(),
