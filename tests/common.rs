@@ -166,6 +166,40 @@ pub(crate) fn texts(column: &dyn arrow_array::Array) -> Vec<String> {
     t.iter().map(|v| v.unwrap_or("").to_string()).collect()
 }
 
+/// Writes the Arrow file `src` again as `dst` with its coded text columns (dictionaries:
+/// `outcome`, `limits_broken`) as plain text (`Utf8`), as sweeps wrote them before they were
+/// coded: the same rows, batches, field metadata and schema metadata.
+pub(crate) fn plain_copy(src: &Path, dst: &Path) {
+    use arrow_array::{ArrayRef, RecordBatch, StringArray};
+    use arrow_schema::{DataType, Schema};
+    use std::sync::Arc;
+    let file = std::fs::File::open(src).expect("open the file");
+    let reader = arrow_ipc::reader::FileReader::try_new(file, None).expect("an Arrow file");
+    let schema = reader.schema();
+    let fields = schema.fields().iter().map(|f| match f.data_type() {
+        DataType::Dictionary(..) => Arc::new(f.as_ref().clone().with_data_type(DataType::Utf8)),
+        _ => f.clone(),
+    });
+    let plain = Arc::new(Schema::new_with_metadata(
+        fields.collect::<Vec<_>>(),
+        schema.metadata().clone(),
+    ));
+    let out = std::fs::File::create(dst).expect("create the copy");
+    let mut w = arrow_ipc::writer::FileWriter::try_new(out, &plain).unwrap();
+    for b in reader {
+        let b = b.expect("a batch");
+        let columns = b.columns().iter().map(|c| match c.data_type() {
+            DataType::Dictionary(..) => {
+                Arc::new(StringArray::from_iter_values(texts(c.as_ref()))) as ArrayRef
+            }
+            _ => c.clone(),
+        });
+        w.write(&RecordBatch::try_new(plain.clone(), columns.collect()).unwrap())
+            .unwrap();
+    }
+    w.finish().unwrap();
+}
+
 /// The texts of column `name` over `batches` (a panic if a batch lacks it).
 pub(crate) fn batch_texts(batches: &[arrow_array::RecordBatch], name: &str) -> Vec<String> {
     let columns = batches.iter().map(|b| {

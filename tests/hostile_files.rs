@@ -557,16 +557,7 @@ fn a_compressed_table_claiming_terabytes_is_refused() {
         ))],
     )
     .unwrap();
-    let options = arrow_ipc::writer::IpcWriteOptions::default()
-        .try_with_compression(Some(arrow_ipc::CompressionType::LZ4_FRAME))
-        .unwrap();
-    let mut bytes = Vec::new();
-    let mut w =
-        arrow_ipc::writer::FileWriter::try_new_with_options(&mut bytes, &batch.schema(), options)
-            .unwrap();
-    w.write(&batch).unwrap();
-    w.finish().unwrap();
-    drop(w);
+    let mut bytes = lz4_file(&batch);
     // The values' buffer: its first 8 bytes are its size decompressed, 8 bytes a row.
     let size = (8 * rows as i64).to_le_bytes();
     let at = bytes
@@ -574,22 +565,82 @@ fn a_compressed_table_claiming_terabytes_is_refused() {
         .position(|w| w == size)
         .expect("the size prefix");
     bytes[at..at + 8].copy_from_slice(&(1i64 << 44).to_le_bytes());
-    std::fs::write(dir.join("lz.arrow"), &bytes).unwrap();
+    refused_as_damaged(&dir, &bytes, &[]);
+}
+
+/// `batch` as an Arrow IPC file compressed with LZ4.
+fn lz4_file(batch: &RecordBatch) -> Vec<u8> {
+    let options = arrow_ipc::writer::IpcWriteOptions::default()
+        .try_with_compression(Some(arrow_ipc::CompressionType::LZ4_FRAME))
+        .unwrap();
+    let mut bytes = Vec::new();
+    let mut w =
+        arrow_ipc::writer::FileWriter::try_new_with_options(&mut bytes, &batch.schema(), options)
+            .unwrap();
+    w.write(batch).unwrap();
+    w.finish().unwrap();
+    drop(w);
+    bytes
+}
+
+/// Checks that a sweep of the table `bytes` (`lz.arrow`, with the flags `more`) is refused
+/// as a damaged file (exit 2, naming it).
+fn refused_as_damaged(dir: &TempDir, bytes: &[u8], more: &[&str]) {
+    std::fs::write(dir.join("lz.arrow"), bytes).unwrap();
+    let args = [
+        "sweep",
+        "--quiet",
+        "--scenario",
+        "short.toml",
+        "--inputs",
+        "lz.arrow",
+    ];
     let run = touchdown(
         dir.path(),
-        &[
-            "sweep",
-            "--quiet",
-            "--scenario",
-            "short.toml",
-            "--inputs",
-            "lz.arrow",
-            "--out",
-            "o.arrow",
-        ],
+        &[&args[..], more, &["--out", "o.arrow"]].concat(),
     );
     assert!(
         run.code == Some(2) && run.stderr.contains("lz.arrow") && run.stderr.contains("damaged"),
         "{run}"
     );
+}
+
+/// The same for a coded (dictionary) column's texts: their buffer, in a dictionary message
+/// ahead of the record batches, says it holds 16 TiB.
+#[test]
+fn a_compressed_dictionary_claiming_terabytes_is_refused() {
+    let dir = TempDir::new("hostile-lz4-dictionary");
+    dir.write("short.toml", SHORT);
+    let rows = 1000;
+    let coded = DataType::Dictionary(Box::new(DataType::Int8), Box::new(DataType::Utf8));
+    // Three texts of 1,000 bytes: a size (3,000) no other buffer has.
+    let texts = ["a", "b", "c"].map(|t| t.repeat(1000));
+    let case = arrow_array::DictionaryArray::<arrow_array::types::Int8Type>::try_new(
+        arrow_array::Int8Array::from_iter_values((0..rows).map(|i| (i % 3) as i8)),
+        Arc::new(arrow_array::StringArray::from_iter_values(&texts)),
+    )
+    .unwrap();
+    let batch = RecordBatch::try_new(
+        Arc::new(Schema::new(vec![
+            Field::new("slope_deg", DataType::Float64, false),
+            Field::new("case", coded, false),
+        ])),
+        vec![
+            Arc::new(Float64Array::from_iter_values(
+                (0..rows).map(|i| f64::from(i % 30)),
+            )),
+            Arc::new(case),
+        ],
+    )
+    .unwrap();
+    let mut bytes = lz4_file(&batch);
+    // The texts' offsets (0, 1000, 2000, 3000, stored as they are) come before them: the
+    // last 3,000 is the texts' size prefix.
+    let size = 3000i64.to_le_bytes();
+    let at = bytes
+        .windows(8)
+        .rposition(|w| w == size)
+        .expect("the size prefix of the texts");
+    bytes[at..at + 8].copy_from_slice(&(1i64 << 44).to_le_bytes());
+    refused_as_damaged(&dir, &bytes, &["--keep-columns"]);
 }

@@ -199,6 +199,17 @@ fn sigint_then_resume_gives_the_uninterrupted_file() {
 }
 
 #[test]
+fn a_file_interrupted_before_the_coded_outcome_resumes_to_the_uninterrupted_file() {
+    let dir = TempDir::new("interrupt-plain");
+    whole_then_interrupted(&dir, SHORT, "300000");
+    // Its text columns as a build before the coded outcome wrote them (plain text).
+    let interrupted = dir.join("r.arrow.interrupted");
+    crate::common::plain_copy(&interrupted, &dir.join("plain.arrow"));
+    std::fs::rename(dir.join("plain.arrow"), &interrupted).unwrap();
+    resume_to_the_end(&dir, "r.arrow", "whole.arrow", 300_000, &["s.toml"]);
+}
+
+#[test]
 fn resume_keeps_every_row_and_readers_say_the_file_is_unfinished() {
     let dir = TempDir::new("interrupt-rows");
     // Fewer samples than a record batch holds: every row done is in a batch not yet full.

@@ -98,7 +98,7 @@ pub fn merge(shards: &[PathBuf], out: &Path, format: Format) -> anyhow::Result<M
     info.kept = &kept;
     let whole = schema(legs, &info);
     for f in &files {
-        if f.schema.fields() != whole.fields() {
+        if !super::sweep::same_columns(f.schema.fields(), whole.fields()) {
             bail!(
                 "{} does not hold the columns of a sweep of this engine (another version?)",
                 f.path.display()

@@ -137,7 +137,7 @@ impl Interrupted {
     ) -> anyhow::Result<(KeptCounts, u64)> {
         let kept = self.kept_rows();
         let (schema, batches) = open(&self.path, self.format)?;
-        if schema.fields() != writer.schema().fields() {
+        if !super::sweep::same_columns(schema.fields(), writer.schema().fields()) {
             bail!(
                 "{} does not hold the columns of a sweep of this engine (another version?); \
                  run the sweep again",

@@ -11,9 +11,10 @@
 #             cmd/NAME.exit of every command; logs/SET/ each command's stderr and times
 #
 # Prints one line per file (equal / equal but the version / DIFFERENT / only in old|new),
-# then "N files compared, N equal, M different". Exits 0 only if every file is equal, both
-# folders hold the same file names and every command exited as it should; 1 otherwise, 2
-# on bad arguments. Needs only bash and coreutils; a python with pyarrow ($TOUCHDOWN_PYTHON,
+# then "N files compared, N equal, E the same values encoded otherwise, M different". Exits
+# 0 only if every file is equal (or the same values encoded otherwise, where
+# SAME_BYTES_ENCODINGS=allow: "Encodings" below), both folders hold the same file names and
+# every command exited as it should; 1 otherwise, 2 on bad arguments. Needs only bash and coreutils; a python with pyarrow ($TOUCHDOWN_PYTHON,
 # else target/tmp/python-venv/bin/python of this repo if it exists) adds the one allowed
 # difference, the engine version (see "Versions" below).
 #
@@ -518,8 +519,9 @@ def encoding_changes(a, b):
                                                   f"{'/'.join(sorted(cb))}" if ca != cb else ""))
     elif a[3] != b[3]:
         return None
-    # The columns coded on either side compared as texts; all others bit for bit where
-    # they hold a value (what a Parquet reader puts under a null depends on the encoding).
+    # The columns coded on either side compared as texts; all others bit for bit (in
+    # Parquet where they hold a value: what its reader puts under a null depends on the
+    # encoding).
     recoded = [x.name for x, y in zip(sa, sb) if x.type != y.type]
     for x, y in zip(a[4], b[4]):
         x, y = as_table(x), as_table(y)
@@ -527,6 +529,8 @@ def encoding_changes(a, b):
             cx, cy = x.column(n), y.column(n)
             if n in recoded:
                 same = texts(cx) == texts(cy)
+            elif a[0] != "parquet":
+                same = bits(pa.table({n: cx})) == bits(pa.table({n: cy}))
             else:
                 same = (cx.is_null().to_pylist() == cy.is_null().to_pylist()
                         and bits(pa.table({n: cx.drop_null()})) == bits(pa.table({n: cy.drop_null()})))
@@ -635,7 +639,7 @@ compare_dirs() {
     echo "$n_cmp files compared, $n_eq equal, $n_enc the same values encoded otherwise, $n_diff different"
     [[ $n_ver -eq 0 ]] || echo "($n_ver of the equal ones differ in the engine version alone: $old_engine / $new_engine)"
     if [[ $n_enc -gt 0 && ${SAME_BYTES_ENCODINGS:-} != allow ]]; then
-        echo "($n_enc files hold the same values encoded otherwise: a change of encoding, not a move of code; SAME_BYTES_ENCODINGS=allow accepts it)"
+        echo "FAILED: $n_enc files hold the same values encoded otherwise: a change of encoding, not a move of code (SAME_BYTES_ENCODINGS=allow accepts it)"
         n_diff=$((n_diff + n_enc))
     fi
     [[ $n_only -eq 0 ]] || echo "$n_only files in one folder only"

@@ -120,7 +120,11 @@ pub fn compressed_sizes(file: &mut (impl Read + Seek), start: u64) -> Result<(),
             break;
         };
         let body = at + 8 + len as u64;
-        if let Some(batch) = message.header_as_record_batch()
+        // A record batch's buffers, or a dictionary's (a coded column's texts).
+        let batch = message
+            .header_as_record_batch()
+            .or_else(|| message.header_as_dictionary_batch().and_then(|d| d.data()));
+        if let Some(batch) = batch
             && let Some(codec) = batch.compression().map(|c| c.codec())
         {
             let ratio = MAX_RATIO

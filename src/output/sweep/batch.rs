@@ -16,6 +16,24 @@ use arrow_schema::SchemaRef;
 use glam::DVec3;
 use std::sync::{Arc, LazyLock};
 
+// An outcome's code is its discriminant (`o as i8`): `Outcome::ALL` lists them in that order.
+const _: () = {
+    let mut i = 0;
+    while i < Outcome::ALL.len() {
+        assert!(
+            Outcome::ALL[i] as usize == i,
+            "Outcome::ALL in the order of the codes"
+        );
+        i += 1;
+    }
+};
+
+// A set of broken limits is coded by its bits, in an `i8`.
+const _: () = assert!(
+    LIMIT_NAMES.len() <= 7,
+    "the sets of limits fit the codes of an i8"
+);
+
 /// The dictionary of the `outcome` column (`schema::coded_texts`): every outcome's name,
 /// at its code (its place in `Outcome::ALL`).
 static OUTCOME_NAMES: LazyLock<ArrayRef> = LazyLock::new(|| {
@@ -32,15 +50,19 @@ static LIMIT_SETS: LazyLock<ArrayRef> = LazyLock::new(|| {
     ))
 });
 
-/// `b` with its coded columns (`outcome`, `limits_broken`) coded into this engine's
-/// dictionaries, as the batches a sweep makes: for a batch read back from a file (a Parquet
-/// reader rebuilds each row group's dictionary from the texts it holds) or joined from
-/// batches of several (`merge`, `--resume`), since an Arrow IPC file holds one dictionary
-/// per column.
-pub fn recoded(b: &RecordBatch) -> anyhow::Result<RecordBatch> {
+/// The columns of `b` as a batch of `schema` (the same columns, `schema::same_columns`),
+/// its coded columns (`outcome`, `limits_broken`) coded into this engine's dictionaries as
+/// the batches a sweep makes: for a batch read back from a file (a Parquet reader rebuilds
+/// each row group's dictionary from the texts it holds; a file written before the coded
+/// outcome holds plain text) or joined from batches of several (`merge`, `--resume`), since
+/// an Arrow IPC file holds one dictionary per column.
+pub fn recoded(b: &RecordBatch, schema: &SchemaRef) -> anyhow::Result<RecordBatch> {
     type Code = fn(&str) -> Option<i8>;
     let mut columns = b.columns().to_vec();
-    for (column, field) in columns.iter_mut().zip(b.schema().fields()) {
+    for (column, field) in columns.iter_mut().zip(schema.fields()) {
+        if !matches!(field.data_type(), arrow_schema::DataType::Dictionary(..)) {
+            continue;
+        }
         let (names, code): (&ArrayRef, Code) = match field.name().as_str() {
             "outcome" => (&OUTCOME_NAMES, |t| Outcome::from_name(t).map(|o| o as i8)),
             LIMITS_COLUMN => (&LIMIT_SETS, |t| {
@@ -64,7 +86,7 @@ pub fn recoded(b: &RecordBatch) -> anyhow::Result<RecordBatch> {
         });
         *column = coded(codes.collect::<anyhow::Result<_>>()?, names)?;
     }
-    Ok(RecordBatch::try_new(b.schema(), columns)?)
+    Ok(RecordBatch::try_new(schema.clone(), columns)?)
 }
 
 /// A coded text column (`schema::coded_texts`) of `codes` into `names`.

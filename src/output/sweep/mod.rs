@@ -17,5 +17,7 @@ mod writer;
 pub use batch::{batch, control_value};
 pub use control::{CONTROL_COLUMNS, control_columns};
 pub use read::{SweepBatch, SweepFile, SweepSource, interrupted_note, leg_count, samples_asked};
-pub use schema::{LIMITS_COLUMN, SHARD_KEYS, SweepInfo, has_limits, parameter_columns, schema};
+pub use schema::{
+    LIMITS_COLUMN, SHARD_KEYS, SweepInfo, has_limits, parameter_columns, same_columns, schema,
+};
 pub use writer::{BatchMaker, Made, Rebatcher, SweepWriter};

@@ -134,6 +134,19 @@ pub fn coded_texts() -> DataType {
     DataType::Dictionary(Box::new(DataType::Int8), Box::new(DataType::Utf8))
 }
 
+/// Whether `a` and `b` are the same columns (names, types, metadata), a coded text column
+/// (`coded_texts`) and a plain one (`Utf8`, as sweeps wrote `outcome` and `limits_broken`
+/// before they were coded) taken as the same: for `merge` and `--resume`, which write both
+/// as this engine codes them.
+#[must_use]
+pub fn same_columns(a: &arrow_schema::Fields, b: &arrow_schema::Fields) -> bool {
+    let plain = |f: &arrow_schema::FieldRef| match f.data_type() {
+        DataType::Dictionary(_, value) => f.as_ref().clone().with_data_type(*value.clone()),
+        _ => f.as_ref().clone(),
+    };
+    a.len() == b.len() && a.iter().zip(b.iter()).all(|(x, y)| plain(x) == plain(y))
+}
+
 /// The fields of a sample's index, seed, inputs and terrain.
 fn input_fields() -> Vec<Field> {
     let f = |n: &str, t: DataType, u: &str, d: &str| field(n, t, u, d);

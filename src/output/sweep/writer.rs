@@ -240,7 +240,7 @@ impl SweepWriter {
     /// Writes a whole batch as it is (for `merge`, which cuts its batches itself), its coded
     /// columns coded as this writer's own batches (`batch::recoded`).
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
-        let b = &recoded(b)?;
+        let b = &recoded(b, &self.schema)?;
         let Some(row_groups) = self.row_groups() else {
             return self.write_made(Made {
                 batch: b.clone(),
@@ -379,8 +379,9 @@ impl Rebatcher {
 
     /// Takes the rows of `b` (columns as in the schema), writing every full batch.
     pub fn push(&mut self, b: RecordBatch, writer: &mut SweepWriter) -> anyhow::Result<()> {
-        // The same columns, under the schema of the whole sweep (no shard metadata).
-        let mut b = RecordBatch::try_new(self.schema.clone(), b.columns().to_vec())?;
+        // The same columns, under the schema of the whole sweep (no shard metadata), coded
+        // as the sweep codes them.
+        let mut b = recoded(&b, &self.schema)?;
         while self.rows + b.num_rows() >= BATCH_ROWS {
             let take = BATCH_ROWS - self.rows;
             self.pieces.push(b.slice(0, take));
