@@ -52,10 +52,11 @@ static LIMIT_SETS: LazyLock<ArrayRef> = LazyLock::new(|| {
 
 /// The columns of `b` as a batch of `schema` (the same columns, `schema::same_columns`),
 /// its coded columns (`outcome`, `limits_broken`) coded into this engine's dictionaries as
-/// the batches a sweep makes: for a batch read back from a file (a Parquet reader rebuilds
-/// each row group's dictionary from the texts it holds; a file written before the coded
-/// outcome holds plain text) or joined from batches of several (`merge`, `--resume`), since
-/// an Arrow IPC file holds one dictionary per column.
+/// the batches a sweep makes: for a batch read back from a file (`Rebatcher::push`, for
+/// `merge` and `--resume`) or joined from several (`SweepWriter::write_batch`), since a
+/// Parquet reader rebuilds each row group's dictionary from the texts it holds, a file
+/// written before the coded outcome holds plain text, joining batches joins their
+/// dictionaries, and an Arrow IPC file holds one dictionary per column.
 pub fn recoded(b: &RecordBatch, schema: &SchemaRef) -> anyhow::Result<RecordBatch> {
     type Code = fn(&str) -> Option<i8>;
     let mut columns = b.columns().to_vec();
@@ -71,9 +72,11 @@ pub fn recoded(b: &RecordBatch, schema: &SchemaRef) -> anyhow::Result<RecordBatc
             }),
             _ => continue,
         };
-        if column
-            .as_any_dictionary_opt()
-            .is_some_and(|d| Arc::ptr_eq(d.values(), names))
+        // Coded already, into a dictionary of the same texts (a file of this engine).
+        if column.data_type() == field.data_type()
+            && column
+                .as_any_dictionary_opt()
+                .is_some_and(|d| d.values().to_data() == names.to_data())
         {
             continue;
         }

@@ -238,7 +238,9 @@ impl SweepWriter {
     }
 
     /// Writes a whole batch as it is (for `merge`, which cuts its batches itself), its coded
-    /// columns coded as this writer's own batches (`batch::recoded`).
+    /// columns coded as this writer's own batches (`batch::recoded`): joining batches
+    /// (`concat_batches`) joins their dictionaries, which an Arrow IPC file refuses after its
+    /// first batch.
     pub fn write_batch(&mut self, b: &RecordBatch) -> anyhow::Result<()> {
         let b = &recoded(b, &self.schema)?;
         let Some(row_groups) = self.row_groups() else {
