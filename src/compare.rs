@@ -199,6 +199,51 @@ pub fn compare(a: &Path, b: &Path) -> anyhow::Result<String> {
         "\n{changed} of {n} samples ({:.2} %) end otherwise in B than in A.",
         100.0 * changed as f64 / n as f64
     );
+    t.push_str(&design_values(a, b)?);
+    Ok(t)
+}
+
+/// The section on the design values at 99 % (`exceedance`) of the quantities both sweeps
+/// have, over all legs: A's, B's and their relative difference; a quantity that is 0 in
+/// both (the stroke without dampers) is left out.
+fn design_values(a: &Path, b: &Path) -> anyhow::Result<String> {
+    use crate::exceedance::{DESIGN_LEVELS, design_value, gather};
+    use crate::output::sweep::SweepSource;
+    let (x, y) = (
+        gather(&SweepSource::Path(a.to_path_buf()), true)?,
+        gather(&SweepSource::Path(b.to_path_buf()), true)?,
+    );
+    let level = DESIGN_LEVELS[0];
+    let mut t = format!(
+        "\n## Design values at {:.0} %\n\nThe value that {:.0} % of the samples exceed, over all \
+         legs (the largest leg of each sample).\n\n| quantity | A | B | (B − A) / A |\n\
+         |---|---:|---:|---:|\n",
+        100.0 * level,
+        100.0 * (1.0 - level)
+    );
+    for q in &x {
+        let Some(r) = y.iter().find(|r| r.key == q.key) else {
+            continue;
+        };
+        let (Some(va), Some(vb)) = (
+            design_value(&q.overall, level),
+            design_value(&r.overall, level),
+        ) else {
+            continue;
+        };
+        if va.value == 0.0 && vb.value == 0.0 {
+            continue;
+        }
+        let _ = writeln!(
+            t,
+            "| {} ({}) | {:.4} | {:.4} | {:+.2} % |",
+            q.name,
+            q.unit,
+            va.value,
+            vb.value,
+            100.0 * (vb.value - va.value) / va.value
+        );
+    }
     Ok(t)
 }
 

@@ -289,6 +289,12 @@ fn scenario_file(name: &str) -> Scenario {
     scenario(&std::fs::read_to_string(path).unwrap())
 }
 
+/// `s` with the contact step's error control at 1e-4 m/s.
+fn controlled(mut s: Scenario) -> Scenario {
+    s.simulation.tolerance_m_s = Some(1e-4);
+    s
+}
+
 #[test]
 fn kernels_agree_with_the_reference() {
     let cases = [
@@ -411,6 +417,42 @@ fn kernels_agree_with_the_reference() {
             "descent",
             scenario_file("descent"),
             200,
+        ),
+        (
+            // The contact step's error control (MODEL.md section 2.1): each lane halves and
+            // doubles its own step, lands within `step_min_s` of a contact, and scales its
+            // kicks where the step changes.
+            "error control",
+            scenario("[simulation]\ntolerance_m_s = 1e-4"),
+            1000,
+        ),
+        (
+            "error control, MuJoCo-matched",
+            controlled(scenario_file("mujoco-matched")),
+            600,
+        ),
+        (
+            "error control, regolith and dampers 50 psi",
+            scenario(
+                "[surface]\nkind = \"regolith\"\n[damper]\nenabled = true\n\
+                 [simulation]\ntolerance_m_s = 1e-4",
+            ),
+            300,
+        ),
+        (
+            "error control, rough, rocks",
+            scenario(
+                "[surface.roughness]\nrms_height_m = 0.02\n[surface.rocks]\nabundance = 0.1\n\
+                 [simulation]\ntolerance_m_s = 1e-4",
+            ),
+            300,
+        ),
+        (
+            // Control events cut the steps: the error control measures none shorter than
+            // `step_min_s`.
+            "error control, hold-down",
+            controlled(scenario_file("hold-down")),
+            300,
         ),
     ];
     // Totals per kernel, passive scenarios apart from those with a control loop.

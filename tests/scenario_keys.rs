@@ -159,7 +159,7 @@ fn every_key_the_reader_accepts_is_printed() {
 /// that leaves it out (the keys without a default show an example, which the printout says).
 #[test]
 fn the_commented_out_keys_show_their_defaults() {
-    const EXAMPLES: [&str; 7] = [
+    const EXAMPLES: [&str; 8] = [
         "limits",
         "thrusters",
         "initial.normal_speed_m_s",
@@ -167,6 +167,7 @@ fn the_commented_out_keys_show_their_defaults() {
         "initial.tangential_azimuth_deg",
         "control.law",
         "control.hold_down.stop_tilt_deg",
+        "simulation.tolerance_m_s",
     ];
     let text = printout();
     let given = all_given(&text);

@@ -44,6 +44,7 @@ mod shape;
 mod shards;
 mod site;
 mod site_pictures;
+mod step_contract;
 mod struts;
 mod study;
 mod sweep_cli;

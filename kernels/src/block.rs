@@ -156,8 +156,13 @@ pub struct Block<L: Lane> {
     pub active: L::Mask,
     /// The current step of every leg (scratch, overwritten by every step).
     pub leg_step: Vec<LegStep<L>>,
-    /// Contact force (I) of the current step, and the body at its start.
+    /// The next step in contact: `Params::step_s`, or with `Params::step_control`, what
+    /// the error control of the last step chose (`step::control_step`).
+    pub contact_step_s: L,
+    /// Contact force (I) of the current step, its moment about the CG (B, without the
+    /// thrust), and the body at its start.
     pub force_n: Vec3<L>,
+    pub moment_n_m: Vec3<L>,
     pub start_position_m: Vec3<L>,
     pub start_velocity_m_s: Vec3<L>,
     /// The rotation at the start of the step.
@@ -185,6 +190,8 @@ pub struct LaneInit {
     pub tile: usize,
     pub rock_offset_m: [f64; 2],
     pub rock_tile: usize,
+    /// The first contact step (`Params::step_s`).
+    pub step_s: f64,
 }
 
 /// The thrust of one lane until its next control event (`ThrustLanes`, one lane).
@@ -290,7 +297,9 @@ impl<L: Lane> Block<L> {
             },
             active: all_false::<L>(),
             leg_step: vec![leg_step; params.legs.len()],
+            contact_step_s: zero,
             force_n: Vec3::ZERO,
+            moment_n_m: Vec3::ZERO,
             start_position_m: Vec3::ZERO,
             start_velocity_m_s: Vec3::ZERO,
             start_rotation: Mat3 {
@@ -317,6 +326,11 @@ impl<L: Lane> Block<L> {
         let set = |l: &mut L, x: f64| l.set_lane(i, x);
         set(&mut self.t_s, 0.0);
         set(&mut self.t_error_s, 0.0);
+        // The error control's memory: the first contact step, and no last step.
+        set(&mut self.contact_step_s, init.step_s);
+        self.force_n.set_lane(i, [0.0; 3]);
+        self.moment_n_m.set_lane(i, [0.0; 3]);
+        set(&mut self.dt_s, 0.0);
         self.position_m.set_lane(i, init.position_m);
         self.velocity_m_s.set_lane(i, init.velocity_m_s);
         self.attitude.set_lane(i, init.attitude);

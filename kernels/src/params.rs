@@ -82,6 +82,12 @@ pub struct Params<L> {
     /// The footpads' radius (their sphere's among rocks).
     pub pad_radius_m: L,
     pub step_s: L,
+    /// Whether the contact step follows its error estimate (`step::control_step`): the
+    /// reference's `Model::step_control`, with its tolerance squared and its bounds.
+    pub step_control: bool,
+    pub tolerance_squared: L,
+    pub step_min_s: L,
+    pub step_max_s: L,
     pub flight_step_max_s: L,
     /// Whether free flight may take steps longer than `step_s`.
     pub long_flight_steps: bool,
@@ -217,6 +223,9 @@ impl<L: Lane> Params<L> {
         one(&mut self.rock_abundance, &from.rock_abundance, i);
         one(&mut self.pad_radius_m, &from.pad_radius_m, i);
         one(&mut self.step_s, &from.step_s, i);
+        one(&mut self.tolerance_squared, &from.tolerance_squared, i);
+        one(&mut self.step_min_s, &from.step_min_s, i);
+        one(&mut self.step_max_s, &from.step_max_s, i);
         one(&mut self.flight_step_max_s, &from.flight_step_max_s, i);
         one(&mut self.t_max_s, &from.t_max_s, i);
         one(&mut self.leg_reach_m, &from.leg_reach_m, i);

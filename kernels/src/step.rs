@@ -97,6 +97,10 @@ pub fn step<
     // Moments about the CG, summed in I and turned into B once: (R a) x (R b) = R (a x b).
     let mut moment_i = Vec3::ZERO;
     let position = block.position_m;
+    // Lanes with a footpad on the surface, and the least clearance of a footpad above the
+    // local surface (for the error control alone).
+    let mut touching = all_false::<L>();
+    let mut nearest = L::splat(f64::INFINITY);
     let legs = p.legs.iter().zip(&mut block.legs).zip(&mut block.leg_step);
     for ((leg, leg_state), out) in legs {
         let tip_b = tip_in_body::<L, DAMPERS>(leg, leg_state.stroke_m);
@@ -110,6 +114,8 @@ pub fn step<
             out.height_m,
         );
         let contact = penetration.simd_gt(zero);
+        touching |= contact;
+        nearest = min_into(nearest, -penetration);
         // As the reference's `if penetration > 0`, for the whole block at once: a leg that
         // no lander (holding a sample) has on the surface adds nothing and forgets its
         // anchor. (Only legs on the surface need the footpad's position and velocity: the
@@ -150,7 +156,16 @@ pub fn step<
         out.normal_n = normal_n;
         out.slipping = slipping;
     }
-    let mut moment_n_m = rotation.transpose_mul_vec3(moment_i);
+    let contact_moment_n_m = rotation.transpose_mul_vec3(moment_i);
+    // What the contact kicks the body with (`kick_scale`): the force and moment themselves
+    // at a fixed step.
+    let (mut kick_n, mut moment_n_m) = (force_n, contact_moment_n_m);
+    if p.step_control {
+        let scale = kick_scale(block, dt);
+        control_step(p, block, force_n, contact_moment_n_m, touching, nearest, dt);
+        kick_n = force_n * scale;
+        moment_n_m = contact_moment_n_m * scale;
+    }
     let mut thrust_n = Vec3::ZERO;
     if THRUST {
         thrust_n = rotation.mul_vec3(block.thrust.force_b_n);
@@ -164,6 +179,7 @@ pub fn step<
     block.start_rotation = rotation;
     block.start_rate_rad_s = block.rate_rad_s;
     block.force_n = force_n;
+    block.moment_n_m = contact_moment_n_m;
     rigid_body::integrate::<L, THRUST>(
         &mut block.position_m,
         &mut block.velocity_m_s,
@@ -173,13 +189,67 @@ pub fn step<
         p.inverse_inertia,
         p.gyroscopic,
         p.gravity_m_s2,
-        force_n,
+        kick_n,
         thrust_n,
         moment_n_m,
         dt,
     );
     block.rotation = block.attitude.to_mat3();
     add_time(&mut block.t_s, &mut block.t_error_s, dt);
+}
+
+/// What the contact force and moment of a step of length `dt` are scaled by with the error
+/// control (the reference's `kick_scale`, which says why): `(dt_s + dt) / (2 dt)`, `dt_s`
+/// the last step's length, where this one has a length; else 1.
+#[inline(always)]
+fn kick_scale<L: Lane>(block: &Block<L>, dt: L) -> L {
+    let moving = dt.simd_gt(L::splat(0.0));
+    moving.select(L::splat(0.5) * (block.dt_s + dt) / dt, L::splat(1.0))
+}
+
+/// The error control of the contact step (the reference's `control_step`, which says
+/// why), from this step's contact force `force_n` (I) and moment `moment_n_m` (B) against
+/// the last step's (`Block::force_n`, `moment_n_m`, `dt_s`, not yet overwritten): the next
+/// contact step into `Block::contact_step_s`; in lanes with no footpad on the surface
+/// (`touching`), the approach step from the footpads' least clearance `nearest` and this
+/// step's length `dt`.
+#[inline(always)]
+fn control_step<L: Lane>(
+    p: &Params<L>,
+    block: &mut Block<L>,
+    force_n: Vec3<L>,
+    moment_n_m: Vec3<L>,
+    touching: L::Mask,
+    nearest: L,
+    dt: L,
+) {
+    let previous = block.dt_s;
+    let jump = (force_n - block.force_n) * p.inverse_mass_per_kg;
+    let (change, inv) = (moment_n_m - block.moment_n_m, p.inverse_inertia);
+    let turn = Vec3::new(change.x * inv.x, change.y * inv.y, change.z * inv.z);
+    let reach = p.leg_reach_m;
+    let change_squared = jump.length_squared() + turn.length_squared() * (reach * reach);
+    let h = block.contact_step_s;
+    let per = h * h / previous;
+    let error_squared = L::splat(0.25) * per * per * change_squared;
+    let measured = previous.simd_ge(p.step_min_s);
+    let shrink = measured & error_squared.simd_gt(p.tolerance_squared);
+    let grow = measured & (L::splat(64.0) * error_squared).simd_lt(p.tolerance_squared);
+    let h = shrink.select(
+        (L::splat(0.5) * h).fast_max(p.step_min_s),
+        grow.select((L::splat(2.0) * h).fast_min(p.step_max_s), h),
+    );
+    // As the reference: half the time to cover what this step leaves of the clearance at
+    // the fastest approach, between `step_min_s` and `step_s`.
+    let speed = block.rate_rad_s.length().mul_add(
+        p.leg_reach_m,
+        block.velocity_m_s.length() + p.gravity_m_s2 * p.flight_step_max_s,
+    ) + block.thrust.approach_m_s;
+    let half = L::splat(0.5);
+    let approach = (half * nearest / speed - half * dt)
+        .fast_max(p.step_min_s)
+        .fast_min(p.step_s);
+    block.contact_step_s = touching.select(h, approach);
 }
 
 /// The strut loads of a leg whose footpad takes the force `f` (in I; 0 where it does not
@@ -240,33 +310,41 @@ pub fn footpad_heights<L: Lane, const DAMPERS: bool>(p: &Params<L>, block: &mut 
 pub const EVENT_DUST_S: f64 = 1e-12;
 
 /// The step every lane takes (see the reference's `step_size`), given the least height of
-/// its footpads above the base plane (`footpad_heights`): `step_s` near the surface,
-/// longer in free flight where no footpad can reach the terrain within it; 0 for empty
-/// lanes. With `THRUST`, never past the lane's next control event, and onto it where it is
-/// less than `EVENT_DUST_S` further.
+/// its footpads above the base plane (`footpad_heights`): `contact_step_s` near the surface
+/// (`step_s`, or what the error control chose), longer in free flight where no footpad can
+/// reach the terrain within it; 0 for empty lanes. With `THRUST`, never past the lane's next
+/// control event, and onto it where it is less than `EVENT_DUST_S` further.
 #[inline(always)]
 #[must_use]
-pub fn step_size<L: Lane, const THRUST: bool>(p: &Params<L>, block: &Block<L>, lowest: L) -> L {
+pub fn step_size<L: Lane, const DAMPERS: bool, const THRUST: bool>(
+    p: &Params<L>,
+    block: &Block<L>,
+    lowest: L,
+) -> L {
     let remaining = p.t_max_s - block.t_s;
-    let mut dt = p.step_s;
+    let mut dt = block.contact_step_s;
     if p.long_flight_steps {
         let clearance = lowest - p.terrain_top_m;
         // As the reference's `if clearance > 0`: only lanes in free flight need the rest.
         let flying = clearance.simd_gt(L::splat(0.0));
         if (flying & block.active).to_bitmask() != 0 {
-            // As the reference: half the clearance over the fastest approach within a
-            // longest flight step.
-            let mut speed = block.rate_rad_s.length().mul_add(
-                p.leg_reach_m,
-                block.velocity_m_s.length() + p.gravity_m_s2 * p.flight_step_max_s,
-            );
-            if THRUST {
-                speed += block.thrust.approach_m_s;
-            }
+            let free = if p.step_control {
+                footpad_flight_step::<L, DAMPERS, THRUST>(p, block)
+            } else {
+                // As the reference: half the clearance over the fastest approach within a
+                // longest flight step.
+                let mut speed = block.rate_rad_s.length().mul_add(
+                    p.leg_reach_m,
+                    block.velocity_m_s.length() + p.gravity_m_s2 * p.flight_step_max_s,
+                );
+                if THRUST {
+                    speed += block.thrust.approach_m_s;
+                }
+                L::splat(0.5) * clearance / speed
+            };
             // (The bounds are never NaN: `fast_` versions give the same.)
-            let free = (L::splat(0.5) * clearance / speed)
-                .fast_max(p.step_s)
-                .fast_min(p.flight_step_max_s);
+            // (`step_min_s` is `step_s` without the error control.)
+            let free = free.fast_max(p.step_min_s).fast_min(p.flight_step_max_s);
             dt = flying.select(free, dt);
         }
     }
@@ -278,6 +356,37 @@ pub fn step_size<L: Lane, const THRUST: bool>(p: &Params<L>, block: &Block<L>, l
     } else {
         dt
     }
+}
+
+/// With the error control, the free-flight step of each lane from each footpad's own
+/// clearance and approach (the reference's `footpad_flight_step`, which says why), from the
+/// footpad heights of `footpad_heights`.
+#[inline(always)]
+fn footpad_flight_step<L: Lane, const DAMPERS: bool, const THRUST: bool>(
+    p: &Params<L>,
+    block: &Block<L>,
+) -> L {
+    let zero = L::splat(0.0);
+    let w = block.rate_rad_s;
+    let reach = p.leg_reach_m;
+    let mut gain =
+        (L::splat(2.0) * w.length_squared()).mul_add(reach, p.gravity_m_s2) * p.flight_step_max_s;
+    if THRUST {
+        gain += block.thrust.approach_m_s;
+    }
+    let normal = block.surface.normal;
+    let along = normal.dot(block.velocity_m_s);
+    let normal_b = block.rotation.transpose_mul_vec3(normal);
+    let mut least = L::splat(f64::INFINITY);
+    let legs = p.legs.iter().zip(&block.legs).zip(&block.leg_step);
+    for ((leg, state), at) in legs {
+        let tip_b = tip_in_body::<L, DAMPERS>(leg, state.stroke_m);
+        let clearance = at.height_m - p.terrain_top_m;
+        let v_n = along + w.dot(tip_b.cross(normal_b));
+        let free = L::splat(0.5) * clearance / ((-v_n).fast_max(zero) + gain);
+        least = min_into(least, free);
+    }
+    least
 }
 
 /// What `advance` did: how many steps it took, `outcome_bits` of the last one, and the
@@ -384,7 +493,7 @@ pub fn advance_with<
 ) -> Advanced {
     for taken in 1..=steps {
         let lowest = footpad_heights::<L, DAMPERS>(p, block);
-        let dt = step_size::<L, THRUST>(p, block, lowest);
+        let dt = step_size::<L, DAMPERS, THRUST>(p, block, lowest);
         step::<L, DAMPERS, TERRAIN, THRUST, REGOLITH>(p, block, dt);
         let decided = crate::outcome::observe::<L, DAMPERS, THRUST>(p, block);
         let bits = outcome_bits(block, decided);

@@ -57,6 +57,17 @@ impl Honeycomb {
     }
 }
 
+/// The error control of the contact step (MODEL.md section 2.1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepControl {
+    /// The error a contact step may add to a footpad's velocity, m/s.
+    pub tolerance_m_s: f64,
+    /// The shortest contact step, s.
+    pub step_min_s: f64,
+    /// The longest contact step, s.
+    pub step_max_s: f64,
+}
+
 /// Outcome thresholds in SI units (rad, not deg).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Thresholds {
@@ -122,8 +133,12 @@ pub struct Model {
     pub rock_abundance: f64,
     /// The rough-terrain tiles (`None`: the bare slope plane).
     pub terrain: Option<Terrain>,
-    /// Step whenever a footpad may touch the surface within it.
+    /// Step whenever a footpad may touch the surface within it: fixed, or with a
+    /// `step_control`, the longest such step out of contact (the control sets those in
+    /// contact).
     pub step_s: f64,
+    /// The contact step's error control (`None`: every contact step is `step_s`).
+    pub step_control: Option<StepControl>,
     /// Longest step in free flight, taken only where no footpad can reach the surface.
     pub flight_step_max_s: f64,
     /// End of a sample: what is undecided by then is decided by the rules at `t_max`.
@@ -252,6 +267,11 @@ impl Model {
                 })
             },
             step_s: s.simulation.step_s,
+            step_control: s.simulation.tolerance_m_s.map(|tolerance_m_s| StepControl {
+                tolerance_m_s,
+                step_min_s: s.simulation.step_min_s,
+                step_max_s: s.simulation.step_max_s,
+            }),
             flight_step_max_s: s.simulation.flight_step_max_s,
             t_max_s: s.simulation.t_max_s,
             thresholds: Thresholds {

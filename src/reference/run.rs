@@ -81,6 +81,10 @@ pub fn initial_state(model: &Model, surface: &Surface, sample: &Sample) -> State
         },
         legs: vec![LegState::default(); model.legs.len()],
         thrust: crate::control::Thrust::NONE,
+        contact_step_s: model.step_s,
+        force_n: DVec3::ZERO,
+        moment_n_m: DVec3::ZERO,
+        dt_s: 0.0,
     }
 }
 

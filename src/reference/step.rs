@@ -2,7 +2,7 @@
 //! The SIMD kernel (`kernels::step`) does the same, in the same order.
 
 use super::contact::{self, LegState};
-use super::model::Model;
+use super::model::{Model, StepControl};
 use super::rigid_body::{self, Body};
 use crate::control::Thrust;
 use crate::slope::Surface;
@@ -23,6 +23,17 @@ pub struct State {
     pub legs: Vec<LegState>,
     /// The thrust until the next control event (none without a control loop).
     pub thrust: Thrust,
+    /// The next step in contact: `Model::step_s`, or with a `StepControl`, what the error
+    /// control of the last step chose (`control_step`), s.
+    pub contact_step_s: f64,
+    /// The last step's contact force (I), N, and moment about the CG (B), N m, without the
+    /// thrust, and its length (0 before the first), s: the error control compares the next
+    /// step's forces with them.
+    pub force_n: DVec3,
+    /// The last step's contact moment (see `force_n`), N m.
+    pub moment_n_m: DVec3,
+    /// The last step's length (see `force_n`), s.
+    pub dt_s: f64,
 }
 
 /// One leg during one step, as computed at the start of the step.
@@ -171,7 +182,33 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
         };
     }
     let thrust = state.thrust;
-    let moment_n_m = rotation.transpose() * moment_i + thrust.moment_b_n_m;
+    let contact_moment_n_m = rotation.transpose() * moment_i;
+    // What the contact kicks the body with (`kick_scale`): the force and moment themselves
+    // at a fixed step.
+    let (mut kick_n, mut kick_moment_n_m) = (force_n, contact_moment_n_m);
+    if let Some(control) = &model.step_control {
+        let scale = kick_scale(state, dt);
+        let touching = report.legs.iter().any(LegReport::in_contact);
+        let nearest = report
+            .legs
+            .iter()
+            .map(|l| -l.penetration_m)
+            .fold(f64::INFINITY, f64::min);
+        control_step(
+            control,
+            model,
+            state,
+            force_n,
+            contact_moment_n_m,
+            (touching, nearest, dt),
+        );
+        kick_n = force_n * scale;
+        kick_moment_n_m = contact_moment_n_m * scale;
+    }
+    state.force_n = force_n;
+    state.moment_n_m = contact_moment_n_m;
+    state.dt_s = dt;
+    let moment_n_m = kick_moment_n_m + thrust.moment_b_n_m;
     report.t_s = state.t_s;
     report.dt_s = dt;
     report.body = body;
@@ -183,13 +220,93 @@ pub fn step(model: &Model, surface: &Surface, state: &mut State, dt: f64, report
         model.mass_kg,
         model.inertia_kg_m2,
         model.gravity_m_s2,
-        force_n,
+        kick_n,
         rotation * thrust.force_b_n,
         moment_n_m,
         dt,
     );
     state.thrust.event_in_s -= dt;
     add_time(&mut state.t_s, &mut state.t_error_s, dt);
+}
+
+/// What the contact force and moment of a step of length `dt` are scaled by, with the
+/// error control (MODEL.md section 2.1): `(dt_s + dt) / (2 dt)`, `dt_s` the last step's
+/// length (0 before the first); 1 for a step of no length.
+///
+/// The step is symplectic Euler, a leapfrog whose velocities lie half a step after the
+/// positions: the force at a step's start kicks the velocity from the middle of the last
+/// step to the middle of this one, a time of `(dt_s + dt) / 2`. At a fixed step that is
+/// `dt`; where the length changes, a kick of `dt` errs by `(dt_s - dt) / 2` times the
+/// acceleration, an error of the first order that no tolerance removes (with it, every
+/// controlled run of the MuJoCo-matched scenario lost 1-1.5 points of its stable share
+/// against the quarter step, the tighter the tolerance the more). It holds at a contact's
+/// first step too: contact began within the last (flight) step, on average at its middle.
+#[must_use]
+pub fn kick_scale(state: &State, dt: f64) -> f64 {
+    if dt > 0.0 {
+        0.5 * (state.dt_s + dt) / dt
+    } else {
+        1.0
+    }
+}
+
+/// The error control of the contact step (MODEL.md section 2.1), after the contact forces
+/// of a step, `force_n` (I) and `moment_n_m` (B, without the thrust), are known: from how
+/// much the acceleration of the footpads changed since the last step's forces, it sets the
+/// next contact step, `state.contact_step_s`.
+///
+/// A step holds the forces of its start, so what it adds to a velocity differs from the
+/// trapezoidal rule's, which takes the mean of the forces at its start and at its end, by
+/// `h/2` times their difference: with the acceleration changing at the rate `|da| / dt` of
+/// the last step (`da` its change over that step, of length `dt`), a step of length `h`
+/// errs by `e(h) = h^2 |da| / (2 dt)` in velocity. `da` is the CG's plus that of the
+/// footpads' rotation about it (the change of the angular acceleration times the leg
+/// reach), added as squares (no square root in the step). Where `e(h)` exceeds the
+/// tolerance the next step is half as long; where `e(2h)` would stay below half of it
+/// (`e(h)` below an eighth), twice as long; never below `step_min_s` nor above
+/// `step_max_s`. A step is never repeated (the estimate comes after it), so a contact
+/// starts short: a lander with no footpad on the surface (`touching` false) takes as its
+/// next contact step half the time its footpads need, at the fastest approach (`step_size`'s
+/// bound), to cover what this step (of length `dt`) leaves of their least clearance above
+/// the local surface (`nearest`), between `step_min_s` and `step_s`; and the flight steps
+/// that bring it down onto a plane end within `step_min_s` of the contact (`step_size`). A
+/// last step shorter than `step_min_s` (cut by a control event or `t_max_s`) measures
+/// nothing.
+pub fn control_step(
+    control: &StepControl,
+    model: &Model,
+    state: &mut State,
+    force_n: DVec3,
+    moment_n_m: DVec3,
+    (touching, nearest, dt): (bool, f64, f64),
+) {
+    let previous = state.dt_s;
+    let jump = (force_n - state.force_n) / model.mass_kg;
+    let turn = (moment_n_m - state.moment_n_m) / model.inertia_kg_m2;
+    let reach = model.leg_reach_m();
+    let change_squared = jump.length_squared() + turn.length_squared() * (reach * reach);
+    let mut h = state.contact_step_s;
+    let per = h * h / previous;
+    let error_squared = 0.25 * per * per * change_squared;
+    let tolerance_squared = control.tolerance_m_s * control.tolerance_m_s;
+    if previous >= control.step_min_s {
+        if error_squared > tolerance_squared {
+            h = (0.5 * h).max(control.step_min_s);
+        } else if 64.0 * error_squared < tolerance_squared {
+            h = (2.0 * h).min(control.step_max_s);
+        }
+    }
+    state.contact_step_s = if touching {
+        h
+    } else {
+        let body = &state.body;
+        let speed = body.rate_rad_s.length() * model.leg_reach_m()
+            + (body.velocity_m_s.length() + model.gravity_m_s2 * model.flight_step_max_s)
+            + state.thrust.approach_m_s;
+        (0.5 * nearest / speed - 0.5 * dt)
+            .max(control.step_min_s)
+            .min(model.step_s)
+    };
 }
 
 /// The loads of a strut whose footpad takes the force `force_n` (in I), `strut_up` its
@@ -227,16 +344,55 @@ pub fn add_time(t: &mut f64, error: &mut f64, dt: f64) {
     *t = sum;
 }
 
-/// The step to take from `state`: `step_s` near the surface; in free flight up to
-/// `flight_step_max_s`, but only half the time in which a footpad could reach the highest
-/// point of the terrain, approaching at the CG speed plus rate times leg reach plus the
-/// speed gravity and thrust add within a longest flight step. Never beyond `t_max_s`, nor
+/// With the error control (MODEL.md section 2.1), the free-flight step of a lander whose
+/// every footpad is above the terrain's highest point: the least, over the footpads, of
+/// half the time in which each could reach it, from its own clearance `c` and its own speed
+/// towards the surface, `max(0, -v_n)` (`v_n = n . (v + w x r)`, its velocity along the
+/// normal, `n . (w x r) = w_B . (r_B x n_B)` in B), plus what that speed can gain within a
+/// longest flight step: gravity and the thrust (`Thrust::approach_m_s`), and the rotation,
+/// whose acceleration at a footpad is at most `|w|^2 r` centripetal plus `|dw/dt| r`
+/// gyroscopic, `|dw/dt| <= |w|^2` torque-free (each `|I_j - I_k| <= I_i`), with `r` the leg
+/// reach. So a footpad rising or drifting along a low hop is not held to the steps of one
+/// falling at the lander's whole speed.
+#[must_use]
+pub fn footpad_flight_step(
+    model: &Model,
+    surface: &Surface,
+    state: &State,
+    normal_b: DVec3,
+) -> f64 {
+    let body = &state.body;
+    let reach = model.leg_reach_m();
+    let gain = (model.gravity_m_s2 + 2.0 * body.rate_rad_s.length_squared() * reach)
+        * model.flight_step_max_s
+        + state.thrust.approach_m_s;
+    let along = surface.normal.dot(body.velocity_m_s);
+    let top = model.terrain_top_m();
+    model
+        .legs
+        .iter()
+        .zip(&state.legs)
+        .map(|(leg, ls)| {
+            let tip_b = leg.tip_m - leg.strut_axis * ls.stroke_m;
+            let clearance = footpad_height(surface, body, normal_b, tip_b) - top;
+            let v_n = along + body.rate_rad_s.dot(tip_b.cross(normal_b));
+            0.5 * clearance / ((-v_n).max(0.0) + gain)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The step to take from `state`: near the surface `contact_step_s` (`step_s`, or what the
+/// error control chose); in free flight up to `flight_step_max_s`, but only half the time
+/// in which a footpad could reach the highest point of the terrain, approaching at the CG
+/// speed plus rate times leg reach plus the speed gravity and thrust add within a longest
+/// flight step, and not below `step_s` (with the error control, each footpad at its own
+/// approach, `footpad_flight_step`, and not below `step_min_s`). Never beyond `t_max_s`, nor
 /// past the next control event, and onto it where it is less than `EVENT_DUST_S` further
 /// (what is left after the steps subtracted from it is their rounding, not time).
 #[must_use]
 pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
     let remaining = model.t_max_s - state.t_s;
-    let mut dt = model.step_s;
+    let mut dt = state.contact_step_s;
     if model.flight_step_max_s > model.step_s {
         let body = &state.body;
         let rotation = DMat3::from_quat(body.attitude);
@@ -261,10 +417,18 @@ pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
             // step `dt` of at most that length they cover at most `speed dt`, and half the
             // time to cover the clearance at `speed` keeps them off the terrain by half of
             // it. (No root of the fall under gravity: one division, no square root.)
-            let speed = body.rate_rad_s.length() * model.leg_reach_m()
-                + (body.velocity_m_s.length() + model.gravity_m_s2 * model.flight_step_max_s)
-                + state.thrust.approach_m_s;
-            dt = (0.5 * clearance / speed).clamp(model.step_s, model.flight_step_max_s);
+            let free = if model.step_control.is_some() {
+                footpad_flight_step(model, surface, state, normal_b)
+            } else {
+                let speed = body.rate_rad_s.length() * model.leg_reach_m()
+                    + (body.velocity_m_s.length() + model.gravity_m_s2 * model.flight_step_max_s)
+                    + state.thrust.approach_m_s;
+                0.5 * clearance / speed
+            };
+            // With the error control, down to its shortest step: the footpads land on the
+            // surface within that, not within `step_s`.
+            let floor = model.step_control.map_or(model.step_s, |c| c.step_min_s);
+            dt = free.clamp(floor, model.flight_step_max_s);
         }
     }
     let dt = dt.min(remaining);

@@ -61,6 +61,10 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
         rock_abundance: lane(m.rock_abundance),
         pad_radius_m: lane(m.pad_radius_m()),
         step_s: lane(m.step_s),
+        step_control: m.step_control.is_some(),
+        tolerance_squared: lane(m.step_control.map_or(0.0, |c| c.tolerance_m_s.powi(2))),
+        step_min_s: lane(m.step_control.map_or(m.step_s, |c| c.step_min_s)),
+        step_max_s: lane(m.step_control.map_or(m.step_s, |c| c.step_max_s)),
         flight_step_max_s: lane(m.flight_step_max_s),
         long_flight_steps: m.flight_step_max_s > m.step_s,
         t_max_s: lane(m.t_max_s),
@@ -114,6 +118,7 @@ pub(super) fn sample_lane_init(model: &Model, sample: &Sample) -> LaneInit {
         tile: surface.tile,
         rock_offset_m: surface.rock_offset_m,
         rock_tile: surface.rock_tile,
+        step_s: model.step_s,
     }
 }
 

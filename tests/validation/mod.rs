@@ -20,6 +20,7 @@ mod regolith;
 mod restitution;
 mod rocks;
 mod sliding;
+mod step_control;
 mod tipping;
 mod touchdown_state;
 

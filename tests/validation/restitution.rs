@@ -7,13 +7,13 @@ use std::f64::consts::PI;
 use touchdown::scenario::{Geometry, Scenario};
 
 /// Restitution of a body on a linear spring-damper that cannot pull.
-fn restitution(zeta: f64) -> f64 {
+pub(super) fn restitution(zeta: f64) -> f64 {
     (-zeta * (PI - 2.0 * zeta.asin()) / (1.0 - zeta * zeta).sqrt()).exp()
 }
 
 /// Drops the lander of `scenario` flat at `v0` and returns the rebound speed over the
 /// impact speed (the CG velocity once every footpad has left the surface; no gravity).
-fn measured_restitution(scenario: &Scenario, v0: f64) -> f64 {
+pub(super) fn measured_restitution(scenario: &Scenario, v0: f64) -> f64 {
     let mut sim = Sim::of(scenario, moving([0.0, 0.0, -v0], [0.0; 3]));
     let mut touched = false;
     sim.advance_while(|s| {
