@@ -12,6 +12,8 @@
 # --samples    samples of every sweep (default 2000)
 # --tolerance  simulation.tolerance_m_s of the controlled runs (default 1e-4)
 # NAME...      only these scenarios (scenarios/NAME.toml); default: all but the studies
+#              (each file's [simulation] table must be a bare `[simulation]` line, as in
+#              scenarios/, and its step `step_s = X`)
 #
 # The contract: each outcome share of the controlled run differs from the quarter step's by
 # no more than the fixed step's does, or by 0.5 points, whichever is larger; its design
@@ -24,7 +26,7 @@
 set -euo pipefail
 
 usage() {
-    sed -n '2,22p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
+    sed -n '2,25p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
     exit "${1:-2}"
 }
 [[ $# -ge 1 && ( $1 == -h || $1 == --help ) ]] && usage 0
@@ -100,8 +102,9 @@ for n in "${names[@]}"; do
     for v in quarter fixed controlled; do
         if ! "$bin" sweep --scenario "$work/$n-$v.toml" --samples "$samples" \
             --out "$work/$n-$v.arrow" > "$work/$n-$v.log" 2>&1; then
-            echo "| $n | not a sweep ($(tail -1 "$work/$n-$v.log")) | | | | | | | | |"
+            echo "| $n | the $v sweep failed ($(tail -1 "$work/$n-$v.log")) | | | | | | | | breaks |"
             ok=0
+            broken=1
             break
         fi
     done
@@ -109,18 +112,32 @@ for n in "${names[@]}"; do
     field() { awk -v k="$2" 'index($0, k) == 1 { print $NF }' "$work/$n-$1.log"; }
     "$bin" compare "$work/$n-quarter.arrow" "$work/$n-fixed.arrow" > "$work/$n-fixed.md"
     "$bin" compare "$work/$n-quarter.arrow" "$work/$n-controlled.arrow" > "$work/$n-controlled.md"
+    differences "$work/$n-fixed.md" > "$work/$n-fixed.differences"
+    differences "$work/$n-controlled.md" > "$work/$n-controlled.differences"
+    # Both comparisons must have given their shares: an empty one would pass unread.
     verdict=$(awk '
         function abs(x) { return x < 0 ? -x : x }
-        FNR == NR { fixed[$1] = $2; if ($1 ~ /^design:/ && abs($2) > fd) fd = abs($2); next }
+        # A difference that is not a number ("inf", "NaN": a design value of 0 in the quarter
+        # run) breaks the contract.
+        function number(x) { return x ~ /^-?[0-9]+(\.[0-9]+)?$/ }
+        FNR == NR {
+            fixed[$1] = $2; if ($1 !~ /^design:/) fixed_shares++
+            if ($1 ~ /^design:/ && abs($2) > fd) fd = abs($2)
+            next
+        }
+        !number($2) { bad = bad " " $1 "(" $2 ")"; next }
         $1 ~ /^design:/ { d = abs($2); if (d > design) design = d; if (d > 1) bad = bad " " substr($1, 8); next }
         {
+            shares++
             c = abs($2); f = abs(fixed[$1]); allowed = f > 0.5 ? f : 0.5
             if (f > sf) sf = f
             if (c > sc) sc = c
             if (c > allowed + 1e-9) bad = bad " " $1
         }
-        END { printf "%.2f points | %.2f points | %.2f %% | %.2f %% | %s\n", sf, sc, fd, design, bad == "" ? "holds" : "breaks:" bad }' \
-        <(differences "$work/$n-fixed.md") <(differences "$work/$n-controlled.md"))
+        END {
+            if (shares == 0 || fixed_shares == 0) bad = bad " (no outcome shares read)"
+            printf "%.2f points | %.2f points | %.2f %% | %.2f %% | %s\n", sf, sc, fd, design, bad == "" ? "holds" : "breaks:" bad
+        }' "$work/$n-fixed.differences" "$work/$n-controlled.differences")
     [[ $verdict == *breaks* ]] && broken=1
     echo "| $n | $(field fixed 'mean steps per sample') | $(field controlled 'mean steps per sample') | $(field fixed 'samples/s') | $(field controlled 'samples/s') | $verdict |"
 done
