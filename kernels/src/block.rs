@@ -4,6 +4,7 @@
 use crate::lane::lane;
 use crate::lane::{Lane, MAX_LANES, Mask, all_false};
 use crate::params::Params;
+use crate::rocks::RockClearance;
 use crate::vec3::{Mat3, Quat, Vec3, mat3_of};
 
 /// What a leg remembers between steps, per lane.
@@ -60,6 +61,9 @@ pub struct LegStep<L: Lane> {
     pub normal_n: L,
     /// Mask: the footpad slips (in contact, friction at its cap).
     pub slipping: L::Mask,
+    /// Among rocks, what the leg's last lookup found free around its footpad: kept from
+    /// step to step, unlike the rest (`rocks::contact_lanes`).
+    pub rock_clear: RockClearance<L>,
 }
 
 /// The surface of each lane.
@@ -154,7 +158,8 @@ pub struct Block<L: Lane> {
     pub track: Track<L>,
     /// Mask: the lane holds a sample.
     pub active: L::Mask,
-    /// The current step of every leg (scratch, overwritten by every step).
+    /// The current step of every leg (scratch, overwritten by every step, but for its
+    /// `rock_clear`).
     pub leg_step: Vec<LegStep<L>>,
     /// The next step in contact: `Params::step_s`, or with `Params::step_control`, what
     /// the error control of the last step chose (`step::control_step`).
@@ -246,6 +251,7 @@ impl<L: Lane> Block<L> {
             penetration_m: zero,
             normal_n: zero,
             slipping: all_false::<L>(),
+            rock_clear: RockClearance::new(),
         };
         let identity = Quat {
             x: zero,
@@ -361,6 +367,9 @@ impl<L: Lane> Block<L> {
         s.rock_tile[i] = init.rock_tile;
         set(&mut s.rock_offset_u_m, init.rock_offset_m[0]);
         set(&mut s.rock_offset_v_m, init.rock_offset_m[1]);
+        for leg in &mut self.leg_step {
+            leg.rock_clear.forget(i);
+        }
         let t = &mut self.track;
         t.start_m.set_lane(i, init.position_m);
         set(&mut t.rest_s, 0.0);
@@ -440,6 +449,10 @@ impl<L: Lane> Block<L> {
         self.surface.rock_offset_u_m.set_lane(i, u + du);
         let v = self.surface.rock_offset_v_m.lane(i);
         self.surface.rock_offset_v_m.set_lane(i, v + dv);
+        // The footpads' tile coordinates are the same but for their rounding: read again.
+        for leg in &mut self.leg_step {
+            leg.rock_clear.forget(i);
+        }
     }
 
     /// Empties lane `i`: it takes no more steps and decides nothing.

@@ -128,6 +128,8 @@ pub struct Params<L> {
     pub diverged_momentum_squared: L,
     /// Height of the terrain's highest point above the plane (0 for the plane), m.
     pub terrain_top_m: L,
+    /// The same, rocks aside: the ground's highest point (`step::step_size`), m.
+    pub ground_top_m: L,
     /// The factor on the terrain's heights of each lane's sample (`Terrain::scale`).
     pub terrain_scale: L,
     /// Whether the landers have a control loop (thrusters): the step then applies
@@ -268,6 +270,7 @@ impl<L: Lane> Params<L> {
             i,
         );
         one(&mut self.terrain_top_m, &from.terrain_top_m, i);
+        one(&mut self.ground_top_m, &from.ground_top_m, i);
         one(&mut self.terrain_scale, &from.terrain_scale, i);
     }
 }

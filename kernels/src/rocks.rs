@@ -47,6 +47,9 @@ pub struct Rocks {
     cell_start: Arc<[u32]>,
     /// The rocks (indices into `rocks`) overlapping each cell, cell after cell.
     cell_rocks: Arc<[u32]>,
+    /// The largest radius (the height) of the rocks overlapping each cell, of every
+    /// abundance (0 for a cell that none overlaps), cell after cell.
+    cell_top_m: Arc<[f64]>,
     top_m: f64,
 }
 
@@ -118,6 +121,15 @@ impl Rocks {
                 next[cell] += 1;
             });
         }
+        let cell_top_m: Vec<f64> = (0..cell_start.len() - 1)
+            .map(|cell| {
+                let entries = cell_start[cell] as usize..cell_start[cell + 1] as usize;
+                cell_rocks[entries]
+                    .iter()
+                    .map(|&index| all[index as usize].radius_m)
+                    .fold(0.0, f64::max)
+            })
+            .collect();
         let top_m = all.iter().map(|r| r.radius_m).fold(0.0, f64::max);
         Rocks {
             tile_size_m,
@@ -128,6 +140,7 @@ impl Rocks {
             tile_start: tile_start.into(),
             cell_start: cell_start.into(),
             cell_rocks: cell_rocks.into(),
+            cell_top_m: cell_top_m.into(),
             top_m,
         }
     }
@@ -168,6 +181,33 @@ impl Rocks {
         self.rocks.len() * size_of::<Rock>()
             + (self.tile_start.len() + self.cell_start.len() + self.cell_rocks.len())
                 * size_of::<u32>()
+            + self.cell_top_m.len() * size_of::<f64>()
+    }
+
+    /// A cell's column or row `i` as its index in `[0, cells)`: `i` lies within a quarter of
+    /// a tile and a cell of the tile (a square of half-side at most a quarter of the tile
+    /// about a point in `[0, tile_size_m]`), so one add or subtract wraps it (`rem_euclid`'s result, without
+    /// its division).
+    #[inline(always)]
+    fn wrap(&self, i: i64) -> usize {
+        let cells = self.cells as i64;
+        debug_assert!((-cells..2 * cells).contains(&i));
+        let i = if i < 0 {
+            i + cells
+        } else if i >= cells {
+            i - cells
+        } else {
+            i
+        };
+        i as usize
+    }
+
+    /// The skin `contact_clear` reads beyond a footpad of `pad_radius_m`: `SKIN_M`, or
+    /// less where the tile is too small for it (the lookup reads at most a quarter).
+    #[inline(always)]
+    #[must_use]
+    pub fn skin_m(&self, pad_radius_m: f64) -> f64 {
+        SKIN_M.min(0.25 * self.tile_size_m - pad_radius_m).max(0.0)
     }
 
     /// The deepest contact of a spherical footpad with the rocks of `tile` present at
@@ -179,8 +219,9 @@ impl Rocks {
     /// the ground plane. The penetration is `R + pad_radius_m - |c|` and the normal `c / |c|`,
     /// with `c` the footpad's centre less the rock's centre (`(0, 0, 1)` where they meet);
     /// a centre below the plane uses the same formula. Where no rock present touches the
-    /// footpad (penetration below 0), `(NO_ROCK, 0, 0, 1)`. `pad_radius_m` must be at most a
-    /// quarter of the tile. No allocation; square roots only for rocks in contact.
+    /// footpad (penetration below 0), `(NO_ROCK, 0, 0, 1)`. Of two rocks at the same
+    /// penetration, the first in `rocks(tile)`. `pad_radius_m` must be at most a quarter of
+    /// the tile. No allocation; square roots only for rocks in contact.
     #[inline(always)]
     #[must_use]
     pub fn contact(
@@ -192,9 +233,35 @@ impl Rocks {
         pad_radius_m: f64,
         abundance: f64,
     ) -> (f64, f64, f64, f64) {
-        // No rock reaches above its radius, and none above the largest.
+        self.contact_clear(tile, u, v, height_m, pad_radius_m, abundance, 0.0)
+            .0
+    }
+
+    /// `contact`, and how far the footpad is free to move before it can meet a rock
+    /// present, m: the least gap `|c| - R - pad_radius_m` between the footpad's sphere and
+    /// a rock's (the negated penetration: at most 0 in contact), and at most `skin_m`. The
+    /// gap changes no faster than `(u, v, height_m)` moves, so while the footpad stays
+    /// within that distance of `(u, v, height_m)` (in the tile's frame), `contact` finds no
+    /// rock there. Rocks further than `skin_m` from the footpad's sphere are not read:
+    /// `pad_radius_m + skin_m` must be at most a quarter of the tile.
+    #[inline(always)]
+    #[must_use]
+    #[allow(clippy::too_many_arguments)]
+    pub fn contact_clear(
+        &self,
+        tile: usize,
+        u: f64,
+        v: f64,
+        height_m: f64,
+        pad_radius_m: f64,
+        abundance: f64,
+        skin_m: f64,
+    ) -> ((f64, f64, f64, f64), f64) {
+        // No rock reaches above its radius, and none above the largest: the footpad's
+        // centre is `height_m + pad_radius_m` above every rock's, so the gap is at least
+        // `height_m - R`.
         if height_m > self.top_m {
-            return (NO_ROCK, 0.0, 0.0, 1.0);
+            return ((NO_ROCK, 0.0, 0.0, 1.0), skin_m.min(height_m - self.top_m));
         }
         let size = self.tile_size_m;
         let (u, v) = (
@@ -202,21 +269,30 @@ impl Rocks {
             v - size * (v * self.inverse_tile_size_per_m).floor(),
         );
         let n_centre = height_m + pad_radius_m;
-        let cells = self.cells as i64;
-        let inv = self.inverse_cell_per_m;
+        let mut best = (NO_ROCK, 0.0, 0.0, 1.0);
+        let mut best_index = u32::MAX;
+        let mut free = skin_m;
+        // A rock whose disc is further than `pad_radius_m + skin_m` from the footpad's
+        // centre along one axis is in no cell read, and its gap is beyond `skin_m`.
+        let (reach_m, inv) = (pad_radius_m + skin_m, self.inverse_cell_per_m);
         let (i_lo, i_hi) = (
-            ((u - pad_radius_m) * inv).floor() as i64,
-            ((u + pad_radius_m) * inv).floor() as i64,
+            ((u - reach_m) * inv).floor() as i64,
+            ((u + reach_m) * inv).floor() as i64,
         );
         let (j_lo, j_hi) = (
-            ((v - pad_radius_m) * inv).floor() as i64,
-            ((v + pad_radius_m) * inv).floor() as i64,
+            ((v - reach_m) * inv).floor() as i64,
+            ((v + reach_m) * inv).floor() as i64,
         );
-        let mut best = (NO_ROCK, 0.0, 0.0, 1.0);
         for j in j_lo..=j_hi {
-            let row = (tile * self.cells + j.rem_euclid(cells) as usize) * self.cells;
+            let row = (tile * self.cells + self.wrap(j)) * self.cells;
             for i in i_lo..=i_hi {
-                let cell = row + i.rem_euclid(cells) as usize;
+                let cell = row + self.wrap(i);
+                // No rock of the cell reaches the footpad's lowest point.
+                let above = height_m - self.cell_top_m[cell];
+                if above > 0.0 {
+                    free = free.min(above);
+                    continue;
+                }
                 let entries = self.cell_start[cell] as usize..self.cell_start[cell + 1] as usize;
                 for &index in &self.cell_rocks[entries] {
                     let rock = &self.rocks[index as usize];
@@ -227,12 +303,18 @@ impl Rocks {
                     let dv = nearest(v - rock.v_m, size);
                     let reach = rock.radius_m + pad_radius_m;
                     let distance2 = du * du + dv * dv + n_centre * n_centre;
-                    if distance2 > reach * reach {
+                    let near = reach + skin_m;
+                    if distance2 > near * near {
                         continue;
                     }
                     let distance = distance2.sqrt();
+                    free = free.min(distance - reach);
+                    if distance2 > reach * reach {
+                        continue;
+                    }
                     let penetration = reach - distance;
-                    if penetration > best.0 {
+                    if penetration > best.0 || (penetration == best.0 && index < best_index) {
+                        best_index = index;
                         best = if distance > 0.0 {
                             let inverse = 1.0 / distance;
                             (penetration, du * inverse, dv * inverse, n_centre * inverse)
@@ -243,7 +325,7 @@ impl Rocks {
                 }
             }
         }
-        best
+        (best, free)
     }
 }
 
@@ -260,10 +342,57 @@ fn nearest(d: f64, size: f64) -> f64 {
     }
 }
 
+/// How far beyond a footpad's sphere `contact_lanes` reads the rocks, m: until the footpad
+/// has moved about that far (or to the nearest rock, if nearer), it is not read again.
+pub const SKIN_M: f64 = 0.05;
+
+/// What `contact_lanes` remembers of one leg, per lane: where the footpad was (`contact`'s
+/// `u`, `v` and `height_m`) when the rocks were last read for it, and how far from there it
+/// is free to move and meet no rock (`Rocks::contact_clear`), less 1 % and 1 micrometre for
+/// the rounding of the lanes' arithmetic (in f32 too); negative where they must be read at
+/// the next step.
+#[derive(Debug, Clone, Copy)]
+#[allow(missing_docs)]
+pub struct RockClearance<L: Lane> {
+    pub u_m: L,
+    pub v_m: L,
+    pub height_m: L,
+    pub free_m: L,
+}
+
+impl<L: Lane> RockClearance<L> {
+    /// Nothing remembered: every lane reads the rocks at its next step.
+    #[must_use]
+    pub fn new() -> RockClearance<L> {
+        RockClearance {
+            u_m: L::ZERO,
+            v_m: L::ZERO,
+            height_m: L::ZERO,
+            free_m: L::splat(-1.0),
+        }
+    }
+
+    /// Lane `i` reads the rocks at its next step (a new sample, or a moved origin).
+    pub fn forget(&mut self, i: usize) {
+        self.free_m.set_lane(i, -1.0);
+    }
+}
+
+impl<L: Lane> Default for RockClearance<L> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// `Rocks::contact` under every lane, each lane on its own tile: one scalar lookup per lane
-/// (the rocks of different lanes are far apart in memory, as the terrain's nodes are).
+/// (the rocks of different lanes are far apart in memory, as the terrain's nodes are), but
+/// only for lanes whose footpad has left the room `clear` remembers; the others meet no
+/// rock, as the lookup would have found (`Rocks::contact_clear`): `(NO_ROCK, 0, 0, 1)`.
+/// (The reference looks up at every step; reading less is this kernel's, with the same
+/// results.)
 #[inline(always)]
 #[must_use]
+#[allow(clippy::too_many_arguments)]
 pub fn contact_lanes<L: Lane>(
     rocks: &Rocks,
     tile: &[usize; MAX_LANES],
@@ -272,21 +401,30 @@ pub fn contact_lanes<L: Lane>(
     height: L,
     pad_radius: L,
     abundance: L,
+    clear: &mut RockClearance<L>,
 ) -> (L, L, L, L) {
-    let (mut p, mut nu, mut nv, mut nn) = (L::ZERO, L::ZERO, L::ZERO, L::ZERO);
-    for (i, &tile) in tile.iter().enumerate().take(L::LANES) {
-        let (pi, nui, nvi, nni) = rocks.contact(
-            tile,
-            u.lane(i),
-            v.lane(i),
-            height.lane(i),
-            pad_radius.lane(i),
-            abundance.lane(i),
-        );
+    let (du, dv, dh) = (u - clear.u_m, v - clear.v_m, height - clear.height_m);
+    let moved_squared = du * du + dv * dv + dh * dh;
+    let free = clear.free_m;
+    // (A NaN position reads the rocks, as the reference does at every step.)
+    let stays = moved_squared.simd_lt(free * free) & free.simd_gt(L::ZERO);
+    let mut read: u32 = !crate::lane::Mask::to_bitmask(stays) & (u32::MAX >> (32 - L::LANES));
+    let (mut p, mut nu, mut nv, mut nn) = (L::splat(NO_ROCK), L::ZERO, L::ZERO, L::splat(1.0));
+    while read != 0 {
+        let i = read.trailing_zeros() as usize;
+        read &= read - 1;
+        let (u, v, height, pad_radius) = (u.lane(i), v.lane(i), height.lane(i), pad_radius.lane(i));
+        let skin = rocks.skin_m(pad_radius);
+        let ((pi, nui, nvi, nni), free) =
+            rocks.contact_clear(tile[i], u, v, height, pad_radius, abundance.lane(i), skin);
         p.set_lane(i, pi);
         nu.set_lane(i, nui);
         nv.set_lane(i, nvi);
         nn.set_lane(i, nni);
+        clear.u_m.set_lane(i, u);
+        clear.v_m.set_lane(i, v);
+        clear.height_m.set_lane(i, height);
+        clear.free_m.set_lane(i, 0.99 * free - 1e-6);
     }
     (p, nu, nv, nn)
 }
@@ -382,6 +520,28 @@ mod tests {
         ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
     }
 
+    /// `tiles` tiles of side `size`, `count` rocks each at uniform places, radii uniform in
+    /// `[radius_min, radius_min + radius_span)`, thresholds uniform in `[0, 1)`.
+    fn field(
+        s: &mut u64,
+        tiles: usize,
+        count: usize,
+        size: f64,
+        radius_min: f64,
+        radius_span: f64,
+    ) -> Vec<Vec<Rock>> {
+        (0..tiles)
+            .map(|_| {
+                (0..count)
+                    .map(|_| {
+                        let (u, v) = (next(s) * size, next(s) * size);
+                        rock(u, v, radius_min + radius_span * next(s), next(s))
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
     /// The deepest contact over every rock of the tile and its eight neighbours' images.
     fn brute_force(list: &[Rock], size: f64, u: f64, v: f64, h: f64, rho: f64, k: f64) -> f64 {
         let mut best = NO_ROCK;
@@ -405,16 +565,7 @@ mod tests {
         // of 0.375 m smaller than the largest rocks (radius up to 0.4 m): rocks span cells.
         let mut s = 7u64;
         let size = 3.0;
-        let tiles: Vec<Vec<Rock>> = (0..2)
-            .map(|_| {
-                (0..400)
-                    .map(|_| {
-                        let (u, v) = (next(&mut s) * size, next(&mut s) * size);
-                        rock(u, v, 0.02 + 0.38 * next(&mut s), next(&mut s))
-                    })
-                    .collect()
-            })
-            .collect();
+        let tiles = field(&mut s, 2, 400, size, 0.02, 0.38);
         let rocks = Rocks::new(size, 8, tiles.clone());
         let mut hits = 0;
         for _ in 0..4000 {
@@ -440,6 +591,129 @@ mod tests {
     }
 
     #[test]
+    fn the_free_distance_is_the_gap_to_the_nearest_rock_up_to_the_skin() {
+        // A field sparse enough for footpads clear of every rock: the free distance is the
+        // least gap `|c| - R - rho` between the footpad's sphere and a rock present's
+        // (brute force over every rock and its periodic images), capped at the skin; the
+        // lowest point's height above the highest rock when higher than all of them.
+        let mut s = 11u64;
+        let size = 3.0;
+        let tiles = field(&mut s, 2, 25, size, 0.02, 0.18);
+        let rocks = Rocks::new(size, 8, tiles.clone());
+        let (mut capped, mut gaps, mut touching) = (0, 0, 0);
+        for _ in 0..4000 {
+            let tile = (next(&mut s) * 2.0) as usize;
+            let (u, v) = (next(&mut s) * 9.0 - 3.0, next(&mut s) * 9.0 - 3.0);
+            let (h, rho, k) = (
+                next(&mut s) * 0.3 - 0.02,
+                0.05 + 0.1 * next(&mut s),
+                next(&mut s),
+            );
+            let skin = 0.2 * next(&mut s);
+            let (uw, vw) = (u.rem_euclid(size), v.rem_euclid(size));
+            let gap = tiles[tile]
+                .iter()
+                .filter(|r| r.threshold <= k)
+                .map(|r| {
+                    let (du, dv) = (nearest(uw - r.u_m, size), nearest(vw - r.v_m, size));
+                    (du * du + dv * dv + (h + rho) * (h + rho)).sqrt() - r.radius_m - rho
+                })
+                .fold(f64::INFINITY, f64::min);
+            let (contact, free) = rocks.contact_clear(tile, u, v, h, rho, k, skin);
+            assert_eq!(contact, rocks.contact(tile, u, v, h, rho, k));
+            if h > rocks.top_m() {
+                assert_eq!(free, skin.min(h - rocks.top_m()));
+                assert!(free <= gap + 1e-12);
+            } else if gap >= skin {
+                assert!(
+                    free <= skin && free >= (h - rocks.top_m()).min(skin),
+                    "{free} {gap}"
+                );
+                capped += 1;
+            } else {
+                assert!(
+                    (free - gap).abs() < 1e-12 || free <= gap,
+                    "{free} against {gap}"
+                );
+                gaps += usize::from((free - gap).abs() < 1e-12);
+                touching += usize::from(gap <= 0.0);
+            }
+        }
+        assert!(
+            capped > 200 && gaps > 200 && touching > 20,
+            "{capped} {gaps} {touching}"
+        );
+    }
+
+    /// Footpads walking through a dense field (and now and then jumping), each step looked
+    /// up with `contact_lanes`'s memory and without: the same contacts, in every lane.
+    fn remembered_lookups_are_fresh_ones<L: Lane>() {
+        let mut s = 5u64;
+        let size = 4.0;
+        let tiles = field(&mut s, 3, 150, size, 0.02, 0.3);
+        let rocks = Rocks::new(size, 8, tiles);
+        let tile: [usize; MAX_LANES] = std::array::from_fn(|i| i % 3);
+        let (mut u, mut v, mut h, mut rho, mut k) = (L::ZERO, L::ZERO, L::ZERO, L::ZERO, L::ZERO);
+        for i in 0..L::LANES {
+            u.set_lane(i, next(&mut s) * 8.0 - 2.0);
+            v.set_lane(i, next(&mut s) * 8.0 - 2.0);
+            h.set_lane(i, next(&mut s) * 0.3);
+            rho.set_lane(i, 0.05 + 0.1 * next(&mut s));
+            k.set_lane(i, next(&mut s));
+        }
+        let mut clear = RockClearance::<L>::new();
+        let (mut contacts, mut read) = (0, 0);
+        for step in 0..20_000 {
+            for i in 0..L::LANES {
+                // Steps of up to 2 mm, and a jump of up to 0.3 m one step in 500.
+                let scale = if step % 500 == 499 { 0.3 } else { 0.002 };
+                let mut walk = |x: &mut L, lo: f64, hi: f64| {
+                    let y = (x.lane(i) + scale * (2.0 * next(&mut s) - 1.0)).clamp(lo, hi);
+                    x.set_lane(i, y);
+                };
+                walk(&mut u, -2.0, 6.0);
+                walk(&mut v, -2.0, 6.0);
+                walk(&mut h, -0.05, 0.35);
+            }
+            let before = clear.free_m;
+            let (p, nu, nv, nn) = contact_lanes(&rocks, &tile, u, v, h, rho, k, &mut clear);
+            for (i, &tile) in tile.iter().enumerate().take(L::LANES) {
+                let fresh = rocks.contact(
+                    tile,
+                    u.lane(i),
+                    v.lane(i),
+                    h.lane(i),
+                    rho.lane(i),
+                    k.lane(i),
+                );
+                // As a lane holds it (f32 lanes round it).
+                let held = |x: f64| {
+                    let mut l = L::ZERO;
+                    l.set_lane(0, x);
+                    l.lane(0)
+                };
+                let fresh = (held(fresh.0), held(fresh.1), held(fresh.2), held(fresh.3));
+                let got = (p.lane(i), nu.lane(i), nv.lane(i), nn.lane(i));
+                assert_eq!(got, fresh, "lane {i}, step {step}");
+                contacts += usize::from(fresh.0 >= 0.0);
+                read += usize::from(clear.free_m.lane(i) != before.lane(i));
+            }
+        }
+        // Both kinds of step occur: contacts, and most steps spared the lookup.
+        let steps = 20_000 * L::LANES;
+        assert!(
+            contacts > steps / 20 && read < steps / 2,
+            "{contacts} {read} of {steps}"
+        );
+    }
+
+    #[test]
+    fn remembered_lookups_are_fresh_ones_in_f64_and_f32() {
+        remembered_lookups_are_fresh_ones::<wide::f64x8>();
+        remembered_lookups_are_fresh_ones::<wide::f32x16>();
+    }
+
+    #[test]
     fn lanes_look_up_each_lane_on_its_tile() {
         use wide::f64x8;
         let rocks = Rocks::new(
@@ -461,6 +735,7 @@ mod tests {
             f64x8::splat(0.1),
             f64x8::splat(0.1),
             f64x8::splat(0.1),
+            &mut RockClearance::new(),
         );
         assert!((p.lane(0) - 0.2).abs() < 1e-15 && (p.lane(1) - 0.1).abs() < 1e-15);
         assert!((p.lane(7) - 0.2).abs() < 1e-15 && nn.lane(1) == 1.0);

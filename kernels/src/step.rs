@@ -6,7 +6,7 @@ use crate::contact::{self, tip_in_body};
 use crate::lane::{Lane, Mask, all_false, min_into, select_into};
 use crate::params::Params;
 use crate::rigid_body;
-use crate::rocks::contact_lanes;
+use crate::rocks::{RockClearance, contact_lanes};
 use crate::terrain::height_lanes;
 use crate::vec3::Vec3;
 
@@ -14,11 +14,14 @@ use crate::vec3::Vec3;
 /// footpad `height` above the base plane (`height_m` of `footpad_heights`), at `tip` on
 /// rough terrain (the plane needs no position: its penetration is `-height`); with `TERRAIN`
 /// among rocks too, the deeper of the ground's and a rock's contact, with the mask of the
-/// lanes where it is the rock's (the reference's `Surface::contact_at`).
+/// lanes where it is the rock's (the reference's `Surface::contact_at`; `clear`, the
+/// leg's memory of the rocks near it, read only among rocks, spares the lookup where none
+/// can be met).
 #[inline(always)]
 fn penetration<L: Lane, const TERRAIN: bool>(
     p: &Params<L>,
     s: &SurfaceLanes<L>,
+    clear: &mut RockClearance<L>,
     tip: impl FnOnce() -> Vec3<L>,
     height: L,
 ) -> (L, Vec3<L>, L::Mask) {
@@ -40,6 +43,7 @@ fn penetration<L: Lane, const TERRAIN: bool>(
         -penetration,
         p.pad_radius_m,
         p.rock_abundance,
+        clear,
     );
     let on_rock = rock.simd_gt(penetration);
     if on_rock.to_bitmask() == 0 {
@@ -110,6 +114,7 @@ pub fn step<
         let (penetration, normal, on_rock) = penetration::<L, TERRAIN>(
             p,
             &block.surface,
+            &mut out.rock_clear,
             move || position + rotation.mul_vec3(tip_b),
             out.height_m,
         );
@@ -312,11 +317,13 @@ pub const EVENT_DUST_S: f64 = 1e-12;
 /// The step every lane takes (see the reference's `step_size`), given the least height of
 /// its footpads above the base plane (`footpad_heights`): `contact_step_s` near the surface
 /// (`step_s`, or what the error control chose), longer in free flight where no footpad can
-/// reach the terrain within it; 0 for empty lanes. With `THRUST`, never past the lane's next
-/// control event, and onto it where it is less than `EVENT_DUST_S` further.
+/// reach the terrain within it (among rocks, the rocks near it: `rock_clearance`); 0 for
+/// empty lanes. With `THRUST`, never past the lane's next control event, and onto it where
+/// it is less than `EVENT_DUST_S` further. Rocks come only with `TERRAIN`: the loops of the
+/// plane do not hold their code.
 #[inline(always)]
 #[must_use]
-pub fn step_size<L: Lane, const DAMPERS: bool, const THRUST: bool>(
+pub fn step_size<L: Lane, const DAMPERS: bool, const TERRAIN: bool, const THRUST: bool>(
     p: &Params<L>,
     block: &Block<L>,
     lowest: L,
@@ -324,24 +331,35 @@ pub fn step_size<L: Lane, const DAMPERS: bool, const THRUST: bool>(
     let remaining = p.t_max_s - block.t_s;
     let mut dt = block.contact_step_s;
     if p.long_flight_steps {
-        let clearance = lowest - p.terrain_top_m;
-        // As the reference's `if clearance > 0`: only lanes in free flight need the rest.
-        let flying = clearance.simd_gt(L::splat(0.0));
-        if (flying & block.active).to_bitmask() != 0 {
-            let free = if p.step_control {
-                footpad_flight_step::<L, DAMPERS, THRUST>(p, block)
-            } else {
-                // As the reference: half the clearance over the fastest approach within a
-                // longest flight step.
-                let mut speed = block.rate_rad_s.length().mul_add(
-                    p.leg_reach_m,
-                    block.velocity_m_s.length() + p.gravity_m_s2 * p.flight_step_max_s,
-                );
-                if THRUST {
-                    speed += block.thrust.approach_m_s;
+        // As the reference's `if clearance > 0`: only lanes in free flight need the rest
+        // (among rocks, those clear of the ground may be).
+        let clearance = lowest - p.ground_top_m;
+        let above = clearance.simd_gt(L::splat(0.0)) & block.active;
+        if above.to_bitmask() != 0 {
+            // As the reference: the fastest approach within a longest flight step.
+            let mut speed = block.rate_rad_s.length().mul_add(
+                p.leg_reach_m,
+                block.velocity_m_s.length() + p.gravity_m_s2 * p.flight_step_max_s,
+            );
+            if THRUST {
+                speed += block.thrust.approach_m_s;
+            }
+            let rocks = TERRAIN && p.rocks.is_some();
+            let (clearance, free) = match (rocks, p.step_control) {
+                (false, false) => (clearance, L::splat(0.5) * clearance / speed),
+                (false, true) => (
+                    clearance,
+                    footpad_flight_step::<L, DAMPERS, THRUST, false>(p, block, above, speed).1,
+                ),
+                (true, false) => {
+                    let clearance = least_clearance::<L, DAMPERS>(p, block, above);
+                    (clearance, L::splat(0.5) * clearance / speed)
                 }
-                L::splat(0.5) * clearance / speed
+                (true, true) => {
+                    footpad_flight_step::<L, DAMPERS, THRUST, true>(p, block, above, speed)
+                }
             };
+            let flying = clearance.simd_gt(L::splat(0.0));
             // (The bounds are never NaN: `fast_` versions give the same.)
             // (`step_min_s` is `step_s` without the error control.)
             let free = free.fast_max(p.step_min_s).fast_min(p.flight_step_max_s);
@@ -358,14 +376,84 @@ pub fn step_size<L: Lane, const DAMPERS: bool, const THRUST: bool>(
     }
 }
 
-/// With the error control, the free-flight step of each lane from each footpad's own
-/// clearance and approach (the reference's `footpad_flight_step`, which says why), from the
-/// footpad heights of `footpad_heights`.
+/// The reference's `rock_clearance` for one leg of every lane of `near` (whose footpads
+/// are all clear of the ground; in the other lanes, `height - terrain_top_m`, which its
+/// lowest footpad's clearance of the ground bounds anyway): how far the footpad, `height`
+/// above the base plane, can move in any direction and meet no rock. A scalar lookup per
+/// lane of `near` (`Rocks::contact_clear`), on the plane; on rough terrain, the terrain's
+/// top.
 #[inline(always)]
-fn footpad_flight_step<L: Lane, const DAMPERS: bool, const THRUST: bool>(
+fn rock_clearance<L: Lane>(
     p: &Params<L>,
     block: &Block<L>,
+    tip_b: Vec3<L>,
+    height: L,
+    near: L::Mask,
 ) -> L {
+    let mut clear = height - p.terrain_top_m;
+    let (Some(rocks), None) = (&p.rocks, &p.terrain) else {
+        return clear;
+    };
+    let s = &block.surface;
+    let tip = block.position_m + block.rotation.mul_vec3(tip_b);
+    let (u, v) = (
+        s.tangent_u.dot(tip) + s.rock_offset_u_m,
+        s.tangent_v.dot(tip) + s.rock_offset_v_m,
+    );
+    let mut lanes = near.to_bitmask();
+    while lanes != 0 {
+        let i = lanes.trailing_zeros() as usize;
+        lanes &= lanes - 1;
+        let (height, pad_radius) = (height.lane(i), p.pad_radius_m.lane(i));
+        let (_, gap) = rocks.contact_clear(
+            s.rock_tile[i],
+            u.lane(i),
+            v.lane(i),
+            height,
+            pad_radius,
+            p.rock_abundance.lane(i),
+            rocks.skin_m(pad_radius),
+        );
+        clear.set_lane(i, gap.max(clear.lane(i)));
+    }
+    clear
+}
+
+/// Among rocks, without the error control, the least clearance of a lane's footpads: of
+/// the ground and of the rocks (`rock_clearance`), for the lanes of `near`.
+#[inline(always)]
+fn least_clearance<L: Lane, const DAMPERS: bool>(
+    p: &Params<L>,
+    block: &Block<L>,
+    near: L::Mask,
+) -> L {
+    let mut least = L::splat(f64::INFINITY);
+    let mut near = near;
+    let legs = p.legs.iter().zip(&block.legs).zip(&block.leg_step);
+    for ((leg, state), at) in legs {
+        let tip_b = tip_in_body::<L, DAMPERS>(leg, state.stroke_m);
+        let ground = at.height_m - p.ground_top_m;
+        let rocks = rock_clearance(p, block, tip_b, at.height_m, near);
+        least = min_into(least, ground.min(rocks));
+        // A lane with a footpad on a rock is not in free flight: no more lookups for it.
+        near &= least.simd_gt(L::splat(0.0));
+    }
+    least
+}
+
+/// With the error control, each lane's free-flight step from each footpad's own clearance
+/// and approach (the reference's `footpad_flight_step`, which says why), from the footpad
+/// heights of `footpad_heights`; with `ROCKS`, also half the time in which the footpad
+/// could reach a rock at `speed` (`rock_clearance`), and the least clearance of its
+/// footpads of the ground and the rocks, as `least_clearance` (without, its first part is
+/// not computed).
+#[inline(always)]
+fn footpad_flight_step<L: Lane, const DAMPERS: bool, const THRUST: bool, const ROCKS: bool>(
+    p: &Params<L>,
+    block: &Block<L>,
+    mut near: L::Mask,
+    speed: L,
+) -> (L, L) {
     let zero = L::splat(0.0);
     let w = block.rate_rad_s;
     let reach = p.leg_reach_m;
@@ -377,16 +465,25 @@ fn footpad_flight_step<L: Lane, const DAMPERS: bool, const THRUST: bool>(
     let normal = block.surface.normal;
     let along = normal.dot(block.velocity_m_s);
     let normal_b = block.rotation.transpose_mul_vec3(normal);
+    let mut least_clearance = L::splat(f64::INFINITY);
     let mut least = L::splat(f64::INFINITY);
     let legs = p.legs.iter().zip(&block.legs).zip(&block.leg_step);
     for ((leg, state), at) in legs {
         let tip_b = tip_in_body::<L, DAMPERS>(leg, state.stroke_m);
-        let clearance = at.height_m - p.terrain_top_m;
+        let clearance = at.height_m - p.ground_top_m;
         let v_n = along + w.dot(tip_b.cross(normal_b));
-        let free = L::splat(0.5) * clearance / ((-v_n).fast_max(zero) + gain);
+        let mut free = L::splat(0.5) * clearance / ((-v_n).fast_max(zero) + gain);
+        if ROCKS {
+            let rocks = rock_clearance(p, block, tip_b, at.height_m, near);
+            least_clearance = min_into(least_clearance, clearance.min(rocks));
+            free = free.min(L::splat(0.5) * rocks / speed);
+            // A lane with a footpad on a rock is not in free flight (its step is not this
+            // one): no more lookups for it.
+            near &= least_clearance.simd_gt(zero);
+        }
         least = min_into(least, free);
     }
-    least
+    (least_clearance, least)
 }
 
 /// What `advance` did: how many steps it took, `outcome_bits` of the last one, and the
@@ -493,7 +590,7 @@ pub fn advance_with<
 ) -> Advanced {
     for taken in 1..=steps {
         let lowest = footpad_heights::<L, DAMPERS>(p, block);
-        let dt = step_size::<L, DAMPERS, THRUST>(p, block, lowest);
+        let dt = step_size::<L, DAMPERS, TERRAIN, THRUST>(p, block, lowest);
         step::<L, DAMPERS, TERRAIN, THRUST, REGOLITH>(p, block, dt);
         let decided = crate::outcome::observe::<L, DAMPERS, THRUST>(p, block);
         let bits = outcome_bits(block, decided);

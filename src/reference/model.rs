@@ -400,11 +400,18 @@ impl Model {
     /// terrain's highest node, and the highest rock on it.
     #[must_use]
     pub fn terrain_top_m(&self) -> f64 {
-        self.terrain.as_ref().map_or(0.0, |t| t.height_max_m())
+        self.ground_top_m()
             + self
                 .rocks
                 .as_ref()
                 .map_or(0.0, kernels::rocks::Rocks::top_m)
+    }
+
+    /// Height of the highest point of the ground above the plane, rocks aside (0 for the
+    /// plane), m: the terrain's highest node.
+    #[must_use]
+    pub fn ground_top_m(&self) -> f64 {
+        self.terrain.as_ref().map_or(0.0, |t| t.height_max_m())
     }
 
     /// The radius of a footpad, `sqrt(A / pi)`, m (its bearing radius on regolith, its

@@ -2,7 +2,7 @@
 //! The SIMD kernel (`kernels::step`) does the same, in the same order.
 
 use super::contact::{self, LegState};
-use super::model::{Model, StepControl};
+use super::model::{Leg, Model, StepControl};
 use super::rigid_body::{self, Body};
 use crate::control::Thrust;
 use crate::slope::Surface;
@@ -349,22 +349,56 @@ pub fn add_time(t: &mut f64, error: &mut f64, dt: f64) {
     *t = sum;
 }
 
+/// How far a footpad at `tip` (in I), its lowest point `height` above the base plane, can
+/// move in any direction and meet no rock (MODEL.md section 2.1, "Rocks bound the step by
+/// what is near"): on the plane, its gap to the nearest rock present, at least `SKIN_M`
+/// read around it (`Rocks::contact_clear`), or its height above the highest rock where
+/// more; on rough terrain, its height above the terrain's top (rocks included); infinite
+/// without rocks. So a footpad hopping among rocks is held to short steps only where a
+/// rock is near, not wherever the highest rock of every tile is higher.
+#[must_use]
+pub fn rock_clearance(model: &Model, surface: &Surface, tip: DVec3, height: f64) -> f64 {
+    let Some(rocks) = &model.rocks else {
+        return f64::INFINITY;
+    };
+    let above_all = height - model.terrain_top_m();
+    if model.terrain.is_some() {
+        return above_all;
+    }
+    let pad_radius = model.pad_radius_m();
+    let (_, gap) = rocks.contact_clear(
+        surface.rock_tile,
+        surface.tangent_u.dot(tip) + surface.rock_offset_m[0],
+        surface.tangent_v.dot(tip) + surface.rock_offset_m[1],
+        height,
+        pad_radius,
+        model.rock_abundance,
+        rocks.skin_m(pad_radius),
+    );
+    gap.max(above_all)
+}
+
 /// With the error control (MODEL.md section 2.1), the free-flight step of a lander whose
-/// every footpad is above the terrain's highest point: the least, over the footpads, of
-/// half the time in which each could reach it, from its own clearance `c` and its own speed
-/// towards the surface, `max(0, -v_n)` (`v_n = n . (v + w x r)`, its velocity along the
-/// normal, `n . (w x r) = w_B . (r_B x n_B)` in B), plus what that speed can gain within a
-/// longest flight step: gravity and the thrust (`Thrust::approach_m_s`), and the rotation,
-/// whose acceleration at a footpad is at most `|w|^2 r` centripetal plus `|dw/dt| r`
-/// gyroscopic, `|dw/dt| <= |w|^2` torque-free (each `|I_j - I_k| <= I_i`), with `r` the leg
-/// reach. So a footpad rising or drifting along a low hop is not held to the steps of one
-/// falling at the lander's whole speed.
+/// every footpad is clear of the terrain (`clearance` of each leg and its state: of the
+/// ground and of the rocks, `rock_clearance`): the least,
+/// over the footpads, of half the time in which each could reach it, from its own
+/// clearance `c` and its own speed towards the surface, `max(0, -v_n)` (`v_n = n . (v +
+/// w x r)`, its velocity along the normal, `n . (w x r) = w_B . (r_B x n_B)` in B), plus
+/// what that speed can gain within a longest flight step: gravity and the thrust
+/// (`Thrust::approach_m_s`), and the rotation, whose acceleration at a footpad is at most
+/// `|w|^2 r` centripetal plus `|dw/dt| r` gyroscopic, `|dw/dt| <= |w|^2` torque-free (each
+/// `|I_j - I_k| <= I_i`), with `r` the leg reach. So a footpad rising or drifting along a
+/// low hop is not held to the steps of one falling at the lander's whole speed. A rock can
+/// be met from any side: half the time to cover its clearance at the whole `speed` (as
+/// without the error control).
 #[must_use]
 pub fn footpad_flight_step(
     model: &Model,
     surface: &Surface,
     state: &State,
     normal_b: DVec3,
+    speed: f64,
+    clearance: impl Fn(&Leg, &LegState) -> (f64, f64),
 ) -> f64 {
     let body = &state.body;
     let reach = model.leg_reach_m();
@@ -372,28 +406,29 @@ pub fn footpad_flight_step(
         * model.flight_step_max_s
         + state.thrust.approach_m_s;
     let along = surface.normal.dot(body.velocity_m_s);
-    let top = model.terrain_top_m();
     model
         .legs
         .iter()
         .zip(&state.legs)
         .map(|(leg, ls)| {
             let tip_b = leg.tip_m - leg.strut_axis * ls.stroke_m;
-            let clearance = footpad_height(surface, body, normal_b, tip_b) - top;
             let v_n = along + body.rate_rad_s.dot(tip_b.cross(normal_b));
-            0.5 * clearance / ((-v_n).max(0.0) + gain)
+            let (ground, rocks) = clearance(leg, ls);
+            (0.5 * ground / ((-v_n).max(0.0) + gain)).min(0.5 * rocks / speed)
         })
         .fold(f64::INFINITY, f64::min)
 }
 
 /// The step to take from `state`: near the surface `contact_step_s` (`step_s`, or what the
 /// error control chose); in free flight up to `flight_step_max_s`, but only half the time
-/// in which a footpad could reach the highest point of the terrain, approaching at the CG
-/// speed plus rate times leg reach plus the speed gravity and thrust add within a longest
-/// flight step, and not below `step_s` (with the error control, each footpad at its own
-/// approach, `footpad_flight_step`, and not below `step_min_s`). Never beyond `t_max_s`, nor
-/// past the next control event, and onto it where it is less than `EVENT_DUST_S` further
-/// (what is left after the steps subtracted from it is their rounding, not time).
+/// in which a footpad could reach the terrain (the ground's top, or a rock near it:
+/// `rock_clearance`), approaching at the
+/// CG speed plus rate times leg reach plus the speed gravity and thrust add within a
+/// longest flight step, and not below `step_s` (with the error control, each footpad at its
+/// own approach, `footpad_flight_step`, and not below `step_min_s`). Never beyond
+/// `t_max_s`, nor past the next control event, and onto it where it is less than
+/// `EVENT_DUST_S` further (what is left after the steps subtracted from it is their
+/// rounding, not time).
 #[must_use]
 pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
     let remaining = model.t_max_s - state.t_s;
@@ -402,32 +437,37 @@ pub fn step_size(model: &Model, surface: &Surface, state: &State) -> f64 {
         let body = &state.body;
         let rotation = DMat3::from_quat(body.attitude);
         let normal_b = rotation.transpose() * surface.normal;
-        let lowest = model
+        // The footpads approach the terrain no faster than the CG's speed plus the rate
+        // times the leg reach, plus what gravity adds within a longest flight step: in a
+        // step `dt` of at most that length they cover at most `speed dt`, and half the
+        // time to cover the clearance at `speed` keeps them off the terrain by half of it.
+        // (No root of the fall under gravity: one division, no square root.)
+        let speed = body.rate_rad_s.length() * model.leg_reach_m()
+            + (body.velocity_m_s.length() + model.gravity_m_s2 * model.flight_step_max_s)
+            + state.thrust.approach_m_s;
+        // Each footpad's clearance of the ground's top and of the rocks.
+        let clearance_of = |leg: &Leg, ls: &LegState| {
+            let tip_b = leg.tip_m - leg.strut_axis * ls.stroke_m;
+            let height = footpad_height(surface, body, normal_b, tip_b);
+            let tip = body.position_m + rotation * tip_b;
+            (
+                height - model.ground_top_m(),
+                rock_clearance(model, surface, tip, height),
+            )
+        };
+        let clearance = model
             .legs
             .iter()
             .zip(&state.legs)
             .map(|(leg, ls)| {
-                footpad_height(
-                    surface,
-                    body,
-                    normal_b,
-                    leg.tip_m - leg.strut_axis * ls.stroke_m,
-                )
+                let (ground, rocks) = clearance_of(leg, ls);
+                ground.min(rocks)
             })
             .fold(f64::INFINITY, f64::min);
-        let clearance = lowest - model.terrain_top_m();
         if clearance > 0.0 {
-            // The footpads approach the terrain no faster than the CG's speed plus the rate
-            // times the leg reach, plus what gravity adds within a longest flight step: in a
-            // step `dt` of at most that length they cover at most `speed dt`, and half the
-            // time to cover the clearance at `speed` keeps them off the terrain by half of
-            // it. (No root of the fall under gravity: one division, no square root.)
             let free = if model.step_control.is_some() {
-                footpad_flight_step(model, surface, state, normal_b)
+                footpad_flight_step(model, surface, state, normal_b, speed, clearance_of)
             } else {
-                let speed = body.rate_rad_s.length() * model.leg_reach_m()
-                    + (body.velocity_m_s.length() + model.gravity_m_s2 * model.flight_step_max_s)
-                    + state.thrust.approach_m_s;
                 0.5 * clearance / speed
             };
             // With the error control, down to its shortest step: the footpads land on the

@@ -89,6 +89,7 @@ pub fn kernel_params<L: Lane>(m: &Model) -> Params<L> {
             (m.inertia_kg_m2.min_element() * m.thresholds.diverged_rate_rad_s).powi(2),
         ),
         terrain_top_m: lane(m.terrain_top_m()),
+        ground_top_m: lane(m.ground_top_m()),
         terrain_scale: lane(m.terrain.as_ref().map_or(1.0, Terrain::scale)),
         thrust: m.control.is_some(),
         struts_along_z: m.legs.iter().all(|l| l.strut_axis == -DVec3::Z),

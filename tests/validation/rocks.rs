@@ -99,3 +99,64 @@ fn the_rest_height_beside_a_rock_is_where_the_spheres_meet() {
     }
     table.finish();
 }
+
+#[test]
+fn the_flight_step_over_rocks_is_bounded_by_the_rocks_near_the_footpads() {
+    // The default lander, level and at rest, its footpads h = 1 cm above the plane in
+    // milligravity (g0 = 0.0168): the flight rule's fastest approach is g0 flight_step_max_s
+    // (no speed, no rate), so a footpad clear of everything by c may take half of c over
+    // it (MODEL.md section 2.1: rock_clearance). A rock of 1 m, 4 m from every footpad, is
+    // no bound (the step is the longest flight step, 50 ms: before, the highest rock of the
+    // tile held it to the fixed 1 ms); a rock of 0.2 m beside footpad 0 at a gap g between
+    // the spheres bounds it at g / (2 g0 flight_step_max_s), fixed step or error control.
+    // Tolerance 1e-9 of the step: the gap is rebuilt from the distance (rounding of 1e-16 m
+    // in 1e-5 m).
+    let mut table = Table::new("rocks: the flight step near rocks");
+    for tolerance in [None, Some(1e-4)] {
+        let mut s = Scenario {
+            gravity_m_s2: 0.0168,
+            ..Scenario::default()
+        };
+        s.simulation.tolerance_m_s = tolerance;
+        let base = Model::new(&s);
+        let (h, radius, pad) = (0.01, 0.2, base.pad_radius_m());
+        let speed = s.gravity_m_s2 * s.simulation.flight_step_max_s;
+        let tip0 = base.legs[0].tip_m;
+        let (u0, v0) = (tip0.x.rem_euclid(8.0), tip0.y.rem_euclid(8.0));
+        let mode = if tolerance.is_some() {
+            "controlled"
+        } else {
+            "fixed"
+        };
+        let mut cases = vec![(
+            "far 1 m rock".to_string(),
+            (4.0, 4.0, 1.0),
+            s.simulation.flight_step_max_s,
+        )];
+        for gap in [1e-5, 2e-5, 3e-5] {
+            let d = ((gap + radius + pad).powi(2) - (h + pad).powi(2)).sqrt();
+            let expected = 0.5 * gap / speed;
+            cases.push((format!("gap {gap:e} m"), (u0 + d, v0, radius), expected));
+        }
+        for (name, rock, expected) in cases {
+            let mut model = base.clone();
+            model.rocks = Some(tile(&[rock]));
+            model.rock_abundance = 0.1;
+            let mut sim = Sim::new(model, quiet());
+            let body = &mut sim.state.body;
+            body.attitude = glam::DQuat::IDENTITY;
+            body.velocity_m_s = DVec3::ZERO;
+            body.rate_rad_s = DVec3::ZERO;
+            body.position_m = DVec3::new(0.0, 0.0, h - tip0.z);
+            let dt = touchdown::reference::step::step_size(&sim.model, &sim.surface, &sim.state);
+            table.close(
+                &format!("{mode}, {name}"),
+                "step (s)",
+                dt,
+                expected,
+                1e-9 * expected,
+            );
+        }
+    }
+    table.finish();
+}
