@@ -10,6 +10,7 @@ use super::worker::{Feed, Padded, Worker};
 use crate::reference::Model;
 use crate::scenario::Scenario;
 use kernels::isa::{Isa, Kernel, KernelKind, WithKernel};
+use std::any::Any;
 use std::collections::BTreeMap;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -153,8 +154,12 @@ pub fn run_until(
 /// When stopped, the samples in the lanes finish and the unbroken run of rows from the
 /// start goes on (the last stretch cut short); an error of `build` or `sink` stops the
 /// workers at once and is returned.
+///
+/// Only this shim is generic: it boxes what `build` makes, and the pipeline with its
+/// workers and kernels is compiled once, in this crate, whatever `T` and `sink` a caller
+/// brings (a test, a bench or an example calling it compiles no kernel again).
 #[allow(clippy::too_many_arguments)]
-pub fn pipeline<T: Send>(
+pub fn pipeline<T: Send + 'static>(
     scenario: &Scenario,
     model: &Model,
     isa: Isa,
@@ -162,7 +167,32 @@ pub fn pipeline<T: Send>(
     stretches: Stretches,
     stop: &AtomicUsize,
     build: &(dyn Fn(Vec<Row>) -> anyhow::Result<T> + Sync),
-    sink: impl FnMut(T) -> anyhow::Result<()>,
+    mut sink: impl FnMut(T) -> anyhow::Result<()>,
+) -> anyhow::Result<Ran> {
+    let build = |rows: Vec<Row>| -> anyhow::Result<Built> { Ok(Box::new(build(rows)?)) };
+    let mut sink = |built: Built| match built.downcast::<T>() {
+        Ok(t) => sink(*t),
+        Err(_) => unreachable!("every stretch is built by `build`, as a T"),
+    };
+    pipeline_built(
+        scenario, model, isa, range, stretches, stop, &build, &mut sink,
+    )
+}
+
+/// What `build` made of a stretch, as the pipeline hands it on.
+type Built = Box<dyn Any + Send>;
+
+/// `pipeline` with what is built boxed (see there).
+#[allow(clippy::too_many_arguments)]
+fn pipeline_built(
+    scenario: &Scenario,
+    model: &Model,
+    isa: Isa,
+    range: Range<u64>,
+    stretches: Stretches,
+    stop: &AtomicUsize,
+    build: &(dyn Fn(Vec<Row>) -> anyhow::Result<Built> + Sync),
+    sink: &mut dyn FnMut(Built) -> anyhow::Result<()>,
 ) -> anyhow::Result<Ran> {
     KernelKind {
         isa,
@@ -179,32 +209,32 @@ pub fn pipeline<T: Send>(
     })
 }
 
-/// The arguments of `pipeline`, to run with the kernel `dispatch` picks.
-struct Pipeline<'a, T, F> {
+/// The arguments of `pipeline_built`, to run with the kernel `dispatch` picks.
+struct Pipeline<'a> {
     scenario: &'a Scenario,
     model: &'a Model,
     range: Range<u64>,
     stretches: Stretches,
     stop: &'a AtomicUsize,
-    build: &'a (dyn Fn(Vec<Row>) -> anyhow::Result<T> + Sync),
-    sink: F,
+    build: &'a (dyn Fn(Vec<Row>) -> anyhow::Result<Built> + Sync),
+    sink: &'a mut dyn FnMut(Built) -> anyhow::Result<()>,
 }
 
 /// What the workers share besides the feed: where rows go.
-struct Stretching<'a, T> {
+struct Stretching<'a> {
     range: Range<u64>,
     stretches: Stretches,
-    build: &'a (dyn Fn(Vec<Row>) -> anyhow::Result<T> + Sync),
+    build: &'a (dyn Fn(Vec<Row>) -> anyhow::Result<Built> + Sync),
     /// The rows of the stretches not yet complete, by stretch number.
     open: Mutex<BTreeMap<u64, Vec<Row>>>,
     /// Set on an error: the workers drop their lanes and return.
     failed: &'a AtomicBool,
 }
 
-impl<T> Stretching<'_, T> {
+impl Stretching<'_> {
     /// Files `row` under its stretch; when that completes the stretch, builds it and sends
     /// it on.
-    fn deliver(&self, row: Row, send: &mpsc::Sender<(u64, anyhow::Result<T>)>) {
+    fn deliver(&self, row: Row, send: &mpsc::Sender<(u64, anyhow::Result<Built>)>) {
         let n = self.range.end - self.range.start;
         let (k, start) = self.stretches.of(row.sample.index - self.range.start);
         let len = self.stretches.span(k, n).1 as usize;
@@ -231,7 +261,7 @@ impl<T> Stretching<'_, T> {
     }
 }
 
-impl<T: Send, F: FnMut(T) -> anyhow::Result<()>> WithKernel for Pipeline<'_, T, F> {
+impl WithKernel for Pipeline<'_> {
     type Output = anyhow::Result<Ran>;
 
     fn run<K: Kernel>(self) -> anyhow::Result<Ran> {
@@ -242,7 +272,7 @@ impl<T: Send, F: FnMut(T) -> anyhow::Result<()>> WithKernel for Pipeline<'_, T, 
             stretches,
             stop,
             build,
-            mut sink,
+            sink,
         } = self;
         // Read by every thread at every step: never in a pair of cache lines with the
         // counters the threads write (see `Padded`).
