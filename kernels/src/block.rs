@@ -459,4 +459,113 @@ impl<L: Lane> Block<L> {
     pub fn retire(&mut self, i: usize) {
         self.active.set_lane(i, false);
     }
+    /// Puts the lander of lane `j` of `from` into lane `i`, every number of its state to
+    /// the bit (outside the kernels): a lander steps the same whatever lane or block holds
+    /// it, so the worker that meets its landers at their control instants may move them
+    /// between blocks. Lane `j` of `from` is left as it was (retire it).
+    pub fn move_lane(&mut self, i: usize, from: &Block<L>, j: usize) {
+        fn one<L: Lane>(to: &mut L, from: &L, i: usize, j: usize) {
+            to.set_lane(i, from.lane(j));
+        }
+        fn three<L: Lane>(to: &mut Vec3<L>, from: &Vec3<L>, i: usize, j: usize) {
+            to.set_lane(i, from.lane(j));
+        }
+        fn nine<L: Lane>(to: &mut Mat3<L>, from: &Mat3<L>, i: usize, j: usize) {
+            three(&mut to.x_axis, &from.x_axis, i, j);
+            three(&mut to.y_axis, &from.y_axis, i, j);
+            three(&mut to.z_axis, &from.z_axis, i, j);
+        }
+        fn flag<M: Mask>(to: &mut M, from: &M, i: usize, j: usize) {
+            Mask::set_lane(to, i, Mask::lane(from, j));
+        }
+        assert!(
+            self.legs.len() == from.legs.len(),
+            "blocks of the same lander"
+        );
+        one(&mut self.t_s, &from.t_s, i, j);
+        one(&mut self.t_error_s, &from.t_error_s, i, j);
+        three(&mut self.position_m, &from.position_m, i, j);
+        three(&mut self.velocity_m_s, &from.velocity_m_s, i, j);
+        self.attitude.set_lane(i, from.attitude.lane(j));
+        nine(&mut self.rotation, &from.rotation, i, j);
+        three(&mut self.rate_rad_s, &from.rate_rad_s, i, j);
+        for (to, from) in self.legs.iter_mut().zip(&from.legs) {
+            one(&mut to.stroke_m, &from.stroke_m, i, j);
+            one(&mut to.absorbed_j, &from.absorbed_j, i, j);
+            three(&mut to.anchor_m, &from.anchor_m, i, j);
+            flag(&mut to.anchored, &from.anchored, i, j);
+            one(&mut to.sinkage_max_m, &from.sinkage_max_m, i, j);
+            one(&mut to.soil_force_max_n, &from.soil_force_max_n, i, j);
+            one(&mut to.soil_absorbed_j, &from.soil_absorbed_j, i, j);
+            three(&mut to.rest_anchor_m, &from.rest_anchor_m, i, j);
+            one(&mut to.peak_normal_n, &from.peak_normal_n, i, j);
+            one(&mut to.peak_axial_n, &from.peak_axial_n, i, j);
+            one(&mut to.peak_axial_s, &from.peak_axial_s, i, j);
+            one(&mut to.peak_side_squared, &from.peak_side_squared, i, j);
+            one(&mut to.peak_side_s, &from.peak_side_s, i, j);
+        }
+        let (to, f) = (&mut self.surface, &from.surface);
+        three(&mut to.normal, &f.normal, i, j);
+        three(&mut to.tangent_u, &f.tangent_u, i, j);
+        three(&mut to.tangent_v, &f.tangent_v, i, j);
+        one(&mut to.offset_u_m, &f.offset_u_m, i, j);
+        one(&mut to.offset_v_m, &f.offset_v_m, i, j);
+        to.tile[i] = f.tile[j];
+        to.rock_tile[i] = f.rock_tile[j];
+        one(&mut to.rock_offset_u_m, &f.rock_offset_u_m, i, j);
+        one(&mut to.rock_offset_v_m, &f.rock_offset_v_m, i, j);
+        let (to, f) = (&mut self.track, &from.track);
+        three(&mut to.start_m, &f.start_m, i, j);
+        one(&mut to.rest_s, &f.rest_s, i, j);
+        one(&mut to.min_cos_tilt, &f.min_cos_tilt, i, j);
+        one(
+            &mut to.peak_acceleration_squared,
+            &f.peak_acceleration_squared,
+            i,
+            j,
+        );
+        one(&mut to.peak_acceleration_z, &f.peak_acceleration_z, i, j);
+        one(&mut to.bounces, &f.bounces, i, j);
+        flag(&mut to.touched, &f.touched, i, j);
+        one(&mut to.first_contact_s, &f.first_contact_s, i, j);
+        three(&mut to.met_velocity_m_s, &f.met_velocity_m_s, i, j);
+        three(&mut to.met_rate_rad_s, &f.met_rate_rad_s, i, j);
+        three(&mut to.met_x_body, &f.met_x_body, i, j);
+        three(&mut to.met_z_body, &f.met_z_body, i, j);
+        one(&mut to.met_leg, &f.met_leg, i, j);
+        one(&mut to.max_penetration, &f.max_penetration, i, j);
+        one(&mut to.steps, &f.steps, i, j);
+        one(&mut to.outcome, &f.outcome, i, j);
+        flag(&mut self.active, &from.active, i, j);
+        for (to, from) in self.leg_step.iter_mut().zip(&from.leg_step) {
+            one(&mut to.height_m, &from.height_m, i, j);
+            one(&mut to.start_stroke_m, &from.start_stroke_m, i, j);
+            three(&mut to.tip_m, &from.tip_m, i, j);
+            three(&mut to.tip_velocity_m_s, &from.tip_velocity_m_s, i, j);
+            one(&mut to.penetration_m, &from.penetration_m, i, j);
+            one(&mut to.normal_n, &from.normal_n, i, j);
+            flag(&mut to.slipping, &from.slipping, i, j);
+            let (to, f) = (&mut to.rock_clear, &from.rock_clear);
+            one(&mut to.u_m, &f.u_m, i, j);
+            one(&mut to.v_m, &f.v_m, i, j);
+            one(&mut to.height_m, &f.height_m, i, j);
+            one(&mut to.free_m, &f.free_m, i, j);
+        }
+        one(&mut self.contact_step_s, &from.contact_step_s, i, j);
+        three(&mut self.force_n, &from.force_n, i, j);
+        three(&mut self.moment_n_m, &from.moment_n_m, i, j);
+        three(&mut self.start_position_m, &from.start_position_m, i, j);
+        three(&mut self.start_velocity_m_s, &from.start_velocity_m_s, i, j);
+        nine(&mut self.start_rotation, &from.start_rotation, i, j);
+        three(&mut self.start_rate_rad_s, &from.start_rate_rad_s, i, j);
+        one(&mut self.start_t_s, &from.start_t_s, i, j);
+        one(&mut self.dt_s, &from.dt_s, i, j);
+        let (to, f) = (&mut self.thrust, &from.thrust);
+        three(&mut to.force_b_n, &f.force_b_n, i, j);
+        three(&mut to.moment_b_n_m, &f.moment_b_n_m, i, j);
+        one(&mut to.event_in_s, &f.event_in_s, i, j);
+        one(&mut to.approach_m_s, &f.approach_m_s, i, j);
+        flag(&mut to.powered, &f.powered, i, j);
+        flag(&mut to.touched, &f.touched, i, j);
+    }
 }

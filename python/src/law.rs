@@ -11,7 +11,8 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use touchdown::control::{LAW_MEMORY, Law, LawCommand, Sensed as Read};
 
-/// What the sensors of the landers of a block read at a control instant, one row per
+/// What the sensors of the landers at a control instant read (every lander a sweep's worker
+/// holds there, up to 512), one row per
 /// lander (`n` of them), as the control loop gives it to a law (noise, bias and latency
 /// as the scenario sets them).
 #[pyclass(module = "touchdown", frozen)]
@@ -58,19 +59,6 @@ struct PyLaw {
     name: String,
 }
 
-/// The names registered with a law of Python's.
-static PYTHON_LAWS: Mutex<Vec<String>> = Mutex::new(Vec::new());
-
-/// Whether `name` is a law of Python's (a sweep of one runs on one worker by default: the
-/// GIL lets one call at a time, and a second worker only waits for its turn).
-pub fn is_python(name: &str) -> bool {
-    PYTHON_LAWS
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner)
-        .iter()
-        .any(|n| n == name)
-}
-
 /// The turn to call a law of Python's (see `Law::command`).
 static TURN: Mutex<()> = Mutex::new(());
 
@@ -101,6 +89,12 @@ pub fn take_error() -> Option<PyErr> {
 }
 
 impl Law for PyLaw {
+    /// A call costs tens of microseconds whatever the landers in it (numpy's overhead):
+    /// the sweep gathers them, hundreds a call.
+    fn gathered(&self) -> bool {
+        true
+    }
+
     fn command(
         &self,
         sensed: &[Read],
@@ -322,12 +316,6 @@ pub fn register_law(name: &str, law: Py<PyAny>, py: Python<'_>) -> PyResult<()> 
     }
     if name.is_empty() {
         return Err(PyValueError::new_err("a control law needs a name"));
-    }
-    let mut names = PYTHON_LAWS
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    if !names.iter().any(|n| n == name) {
-        names.push(name.to_string());
     }
     touchdown::control::register_law(
         name,

@@ -116,15 +116,6 @@ impl SweepRun {
         };
         let plan = SweepPlan::new(&settings).or_py()?;
         crate::law::clear();
-        // A law of Python's runs one call at a time (the GIL): one worker is fastest
-        // (1,000 samples of examples/user-law.toml: 9 s on one, 18 s on two).
-        let python_law = plan
-            .scenario
-            .control
-            .as_ref()
-            .and_then(|c| c.law.as_deref())
-            .is_some_and(crate::law::is_python);
-        let threads = threads.or(python_law.then_some(1));
         let pool = worker_pool(threads).or_py()?;
         let total = plan.samples;
         let stop = Arc::new(AtomicUsize::new(0));

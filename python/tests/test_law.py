@@ -43,10 +43,37 @@ def test_the_python_law_lands_as_the_rust_law(scenario, root_dir, tmp_path):
     for name in rust.column_names:
         assert python.column(name).equals(rust.column(name)), name
     assert len(set(rust.column("outcome").to_pylist())) >= 2
-    # On two workers (a Python law's sweep runs on one unless told), whose calls take
-    # turns: the same rows, whatever the grouping of landers into calls.
+    # On two workers, whose calls take turns: the same rows, whatever the grouping of
+    # landers into calls.
     two = touchdown.sweep(scenario, samples=200, threads=2, progress=False)
     assert two.equals(rust.slice(0, 200))
+
+
+class Counting(DampThenHold):
+    """The law, counting the landers of each call."""
+
+    def __init__(self):
+        self.sizes = []
+
+    def command(self, sensed, memory):
+        self.sizes.append(len(sensed))
+        return super().command(sensed, memory)
+
+
+def test_the_law_is_called_for_hundreds_of_landers_at_once(root_dir):
+    # The sweep gathers a worker's landers at each control instant (up to 512): one call
+    # for all of them, not one per block for the one or two that meet there by chance.
+    law = Counting()
+    touchdown.register_law("damp_then_hold_counted", law)
+    text = (root_dir / "examples" / "user-law.toml").read_text()
+    scenario = touchdown.Scenario.from_toml(text.replace('"damp_then_hold"', '"damp_then_hold_counted"'))
+    table = touchdown.sweep(scenario, samples=1000, threads=1, progress=False)
+    assert table.num_rows == 1000
+    sizes = sorted(law.sizes)
+    # On one worker the calls are the same in every run: 1,000 samples in calls of at
+    # most 512, the median 508 (measured).
+    assert max(sizes) <= 512
+    assert sizes[len(sizes) // 2] >= 256, sizes[len(sizes) // 2]
 
 
 def test_a_trace_with_the_python_law_is_its_sweep_row(scenario, root_dir, tmp_path):

@@ -73,7 +73,7 @@ Whole = Union[int, float, str]
 
 @dataclasses.dataclass
 class Command:
-    """What a control law commands for the landers of a block, as ``command`` returns it.
+    """What a control law commands for the landers of a call, as ``command`` returns it.
 
     Each field may be left ``None`` (nothing commanded) or given for all landers at once
     (one row broadcast to every lander).
@@ -261,8 +261,9 @@ def sweep(
             ``1e5``, or a string as ``--samples`` takes it: ``"1e5"``, ``"2.5e5"``;
             default: the scenario's ``samples``, or the rows of ``inputs``).
         seed: The sweep's seed, 0 to 2^63 - 1 (default: the scenario's).
-        threads: Worker threads, 1 to 1024 (default: one per core; one where the
-            scenario's law is a Python law, which runs one call at a time under the GIL).
+        threads: Worker threads, 1 to 1024 (default: one per core; a Python law is
+            called by one worker at a time, for the hundreds of landers it holds at the
+            instant, while the others step theirs).
         design: ``"independent"``, ``"sobol-sequence"`` or ``"sobol-indices"`` (default:
             the scenario's).
         inputs: Your own inputs, one sample per row: a path (CSV, Arrow or Parquet) or

@@ -32,7 +32,8 @@ pub struct LawCommand {
 ///
 /// At every control instant the loop reads the sensors (with their noise, bias and
 /// latency as the scenario gives them) and asks the law for a command. The landers of a
-/// block that reach a control instant together are handed over at once, as slices of the
+/// block that reach a control instant together (with `gathered`, every lander of a worker
+/// at the instant) are handed over at once, as slices of the
 /// same length: `sensed[i]` is what lander `i`'s sensors read, `memory[i]` what the law
 /// kept for that lander (zero at the start of its sample), and the law writes its command
 /// into `command[i]` (zero when it is called). The law commands in every phase until it
@@ -47,6 +48,17 @@ pub trait Law: Send + Sync {
         memory: &mut [[f64; LAW_MEMORY]],
         command: &mut [LawCommand],
     );
+
+    /// Whether a sweep gathers the landers of a worker at each control instant and calls
+    /// the law once for all of them (up to 512 a call; `sweep::cohort`): worth it where a
+    /// call costs far more than the work for one lander in it, as a Python law's does. The
+    /// rows are the same either way. By default `false`: a sweep calls the law for the
+    /// landers of a block that reach an instant together, and the landers stay in their
+    /// lanes (gathering them moves each between blocks twice an instant, which made the
+    /// Rust law of `examples/user_law` a fifth slower).
+    fn gathered(&self) -> bool {
+        false
+    }
 }
 
 /// A registered law and its name.

@@ -11,8 +11,11 @@
 //!
 //! The folder: `shard` (a slice of the sample range), `row` (what a run hands on), `lanes`
 //! (the kernels' parameters and a lane's state from the reference model, and back),
-//! `worker` (one block and its step loop), `run` (the pipeline of workers and stretches).
+//! `worker` (one block and its step loop), `cohort` (a worker whose landers meet at their
+//! control instants, for a law that gathers them: one call for hundreds), `run` (the
+//! pipeline of workers and stretches).
 
+mod cohort;
 mod lanes;
 mod row;
 mod run;

@@ -4,6 +4,7 @@
 //! encoded); the calling thread only hands the built stretches on in sample order. No
 //! worker waits for the caller unless it has run a set distance ahead of it.
 
+use super::cohort::Cohort;
 use super::lanes::kernel_params;
 use super::row::{LaneStats, Row};
 use super::worker::{Feed, Padded, Worker};
@@ -322,13 +323,20 @@ impl WithKernel for Pipeline<'_> {
                 .map(|_| {
                     let (stretching, feed, send) = (&stretching, &feed, send.clone());
                     scope.spawn(move || {
-                        Worker::<K>::new(params, per_sample).run(
-                            scenario,
-                            model,
-                            params,
-                            feed,
-                            |row| stretching.deliver(row, &send),
-                        )
+                        let deliver = |row| stretching.deliver(row, &send);
+                        // A law that gathers the landers: they meet at its instants.
+                        let gathered = model
+                            .control
+                            .as_ref()
+                            .and_then(|m| m.law.as_ref())
+                            .is_some_and(|l| l.law.gathered());
+                        if gathered {
+                            Cohort::<K>::new(params, per_sample)
+                                .run(scenario, model, params, feed, deliver)
+                        } else {
+                            Worker::<K>::new(params, per_sample)
+                                .run(scenario, model, params, feed, deliver)
+                        }
                     })
                 })
                 .collect();

@@ -3,7 +3,7 @@
 
 use super::lanes::{kernel_params, lane_summary, lane_thrust, lane_truth, sample_lane_init};
 use super::row::{LaneStats, Row};
-use crate::control::{ControlModel, LAW_MEMORY, LaneControl, LawCommand, Sensed};
+use crate::control::{ControlModel, LAW_MEMORY, LaneControl, LawCommand, Phase, Sensed, Truth};
 use crate::reference::Model;
 use crate::sampling;
 use crate::scenario::Sample;
@@ -35,7 +35,8 @@ pub(super) struct Worker<L: Lane> {
     /// The sample of each lane (the first `L::LANES` used).
     samples: [Option<Sample>; MAX_LANES],
     /// The control loop of each lane's sample (scenarios with one).
-    control: [Option<LaneControl>; MAX_LANES],
+    /// (Boxed: the cohort moves landers between blocks at every control instant.)
+    control: [Option<Box<LaneControl>>; MAX_LANES],
 }
 
 /// The most steps a worker asks of the kernel at once: the kernel returns sooner when a
@@ -63,12 +64,12 @@ pub(super) struct Feed<'a> {
 
 impl Feed<'_> {
     /// Whether the run failed.
-    fn failed(&self) -> bool {
+    pub(super) fn failed(&self) -> bool {
         self.failed.load(Ordering::Relaxed)
     }
 
     /// The next sample index, if one below `cap` is left and the run goes on.
-    fn take(&self) -> Option<u64> {
+    pub(super) fn take(&self) -> Option<u64> {
         if self.stop.load(Ordering::Relaxed) != 0 || self.failed() {
             return None;
         }
@@ -81,14 +82,14 @@ impl Feed<'_> {
     }
 
     /// Whether no sample is left to take, ever.
-    fn exhausted(&self) -> bool {
+    pub(super) fn exhausted(&self) -> bool {
         self.stop.load(Ordering::Relaxed) != 0
             || self.failed()
             || self.next.load(Ordering::Relaxed) >= self.end
     }
 
     /// Waits until `cap` moves (or a while, for a stop signal, which cannot wake it).
-    fn wait(&self) {
+    pub(super) fn wait(&self) {
         let sunk = self.sunk.lock().expect("no thread panics holding it");
         if self.exhausted() || self.next.load(Ordering::Relaxed) < self.cap.load(Ordering::Relaxed)
         {
@@ -117,13 +118,25 @@ impl<K: Kernel> Worker<K> {
         if let Some(index) = feed.take() {
             self.load(scenario, model, i, index);
         } else {
-            self.block.retire(i);
-            self.samples[i] = None;
+            self.empty(i);
         }
     }
 
     /// Puts sample `index` into lane `i`.
     fn load(&mut self, scenario: &Scenario, model: &Model, i: usize, index: u64) {
+        self.place(scenario, model, i, index);
+        if let Some(m) = &model.control {
+            // Its loop's start: its first instant, the law (if any) for it alone.
+            self.block.take_touched(i);
+            let truth = lane_truth(&self.block, i, false, false);
+            let c = self.control[i].as_mut().expect("placed with its loop");
+            self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
+        }
+    }
+
+    /// Puts sample `index` into lane `i`, with its control loop not yet started (`load`
+    /// starts it; the cohort, `begin_event` and `end_event`).
+    pub(super) fn place(&mut self, scenario: &Scenario, model: &Model, i: usize, index: u64) {
         let s = sampling::sample(scenario, index);
         // The sample's own model, made once for its parameters and its initial state.
         let own_model = model.for_sample(&s);
@@ -132,13 +145,89 @@ impl<K: Kernel> Worker<K> {
         }
         self.block.load(i, &sample_lane_init(&own_model, &s));
         self.samples[i] = Some(s);
-        if let Some(m) = &model.control {
-            let mut c = LaneControl::new(m, &s);
-            self.block.take_touched(i);
-            let truth = lane_truth(&self.block, i, false, false);
-            self.block.set_thrust(i, &lane_thrust(&c.event(m, &truth)));
-            self.control[i] = Some(c);
+        self.control[i] = model
+            .control
+            .as_ref()
+            .map(|m| Box::new(LaneControl::new(m, &s)));
+    }
+
+    /// Number of lanes holding a lander.
+    pub(super) fn busy(&self) -> usize {
+        self.block.busy_lanes()
+    }
+
+    /// Whether lane `i` holds a lander.
+    pub(super) fn holds(&self, i: usize) -> bool {
+        self.samples[i].is_some()
+    }
+
+    /// Empties lane `i`.
+    pub(super) fn empty(&mut self, i: usize) {
+        self.block.retire(i);
+        self.samples[i] = None;
+        self.control[i] = None;
+    }
+
+    /// Takes the lander of lane `j` of `from` into lane `i` (which holds none): its state,
+    /// parameters, sample and control loop; lane `j` of `from` is left empty.
+    pub(super) fn take_lander(&mut self, i: usize, from: &mut Worker<K>, j: usize) {
+        self.block.move_lane(i, &from.block, j);
+        if let (Some(own), Some(theirs)) = (&mut self.own, &from.own) {
+            own.copy_lane(i, theirs);
         }
+        self.samples[i] = from.samples[j].take();
+        self.control[i] = from.control[j].take();
+        from.block.retire(j);
+    }
+
+    /// Whether a lander of the block will stop at its next control instant for the user's
+    /// law: its loop is in the law's phase (the law has not said it is done).
+    pub(super) fn any_bound(&self) -> bool {
+        self.control
+            .iter()
+            .take(K::LANES)
+            .flatten()
+            .any(|c| c.phase() == Phase::User)
+    }
+
+    /// The law's memory of lane `i`'s lander.
+    pub(super) fn memory(&mut self, i: usize) -> &mut [f64; LAW_MEMORY] {
+        self.control[i]
+            .as_mut()
+            .expect("a lane with a loop")
+            .memory()
+    }
+
+    /// The first half of lane `i`'s control event (`LaneControl::begin`): the reading the
+    /// user's law must command, if it must, and the true state of the event.
+    pub(super) fn begin_event(&mut self, m: &ControlModel, i: usize) -> (Option<Sensed>, Truth) {
+        let touching = self
+            .block
+            .leg_step
+            .iter()
+            .any(|l| l.penetration_m.lane(i) > 0.0);
+        let contact = self.block.take_touched(i);
+        let truth = lane_truth(&self.block, i, contact, touching);
+        let c = self.control[i]
+            .as_mut()
+            .expect("a lane with events has a loop");
+        (c.begin(m, &truth), truth)
+    }
+
+    /// The second half (`LaneControl::end`), with the law's command `user` where
+    /// `begin_event` asked for one: the lane's thrust until its next event.
+    pub(super) fn end_event(
+        &mut self,
+        m: &ControlModel,
+        i: usize,
+        truth: &Truth,
+        user: Option<&LawCommand>,
+    ) {
+        let c = self.control[i]
+            .as_mut()
+            .expect("a lane with events has a loop");
+        self.block
+            .set_thrust(i, &lane_thrust(&c.end(m, truth, user)));
     }
 
     /// The control events of the lanes of `events` (lane `i` in bit `i`): each lane's loop
@@ -150,17 +239,8 @@ impl<K: Kernel> Worker<K> {
         let mut sensed = [None; MAX_LANES];
         let mut count = 0;
         for i in (0..K::LANES).filter(|i| events & (1 << i) != 0) {
-            let touching = self
-                .block
-                .leg_step
-                .iter()
-                .any(|l| l.penetration_m.lane(i) > 0.0);
-            let contact = self.block.take_touched(i);
-            let truth = lane_truth(&self.block, i, contact, touching);
-            let c = self.control[i]
-                .as_mut()
-                .expect("a lane with events has a loop");
-            if let Some(s) = c.begin(m, &truth) {
+            let (asked, truth) = self.begin_event(m, i);
+            if let Some(s) = asked {
                 asking[count] = i;
                 sensed[count] = Some(s);
                 count += 1;
@@ -175,10 +255,7 @@ impl<K: Kernel> Worker<K> {
                 std::array::from_fn(|k| sensed[k].unwrap_or(sensed[0].expect("one asks")));
             let mut memory = [[0.0; LAW_MEMORY]; MAX_LANES];
             for (k, &i) in asking[..count].iter().enumerate() {
-                memory[k] = *self.control[i]
-                    .as_mut()
-                    .expect("asking lanes have a loop")
-                    .memory();
+                memory[k] = *self.memory(i);
             }
             law.law.command(
                 &readings[..count],
@@ -186,10 +263,7 @@ impl<K: Kernel> Worker<K> {
                 &mut commands[..count],
             );
             for (k, &i) in asking[..count].iter().enumerate() {
-                *self.control[i]
-                    .as_mut()
-                    .expect("asking lanes have a loop")
-                    .memory() = memory[k];
+                *self.memory(i) = memory[k];
             }
         }
         for i in (0..K::LANES).filter(|i| events & (1 << i) != 0) {
@@ -198,12 +272,41 @@ impl<K: Kernel> Worker<K> {
                 .iter()
                 .position(|&a| a == i)
                 .map(|k| &commands[k]);
-            let c = self.control[i]
-                .as_mut()
-                .expect("a lane with events has a loop");
-            self.block
-                .set_thrust(i, &lane_thrust(&c.end(m, &truth, user)));
+            self.end_event(m, i, &truth, user);
         }
+    }
+
+    /// Steps the block once through the kernel (at most `STEPS_PER_CALL` steps, fewer where
+    /// a lane is decided or at a control event), counting its lanes' steps into `stats`
+    /// and recentring the lanes that ask for it: the lanes decided and the lanes at a
+    /// control event, lane `i` in bit `i` of each.
+    pub(super) fn advance(&mut self, params: &Params<K>, stats: &mut LaneStats) -> (u32, u32) {
+        // The lanes change only between calls (a decision stops the kernel), so `busy`
+        // holds for every step of one.
+        let busy = self.block.busy_lanes() as u64;
+        let lane_params = self.own.as_ref().unwrap_or(params);
+        let advanced = K::advance(lane_params, &mut self.block, STEPS_PER_CALL);
+        stats.busy_lane_steps += busy * u64::from(advanced.steps);
+        stats.lane_steps += K::LANES as u64 * u64::from(advanced.steps);
+        let (decided, far) = (advanced.bits & 0xffff, advanced.bits >> 16);
+        if far != 0 {
+            for i in (0..K::LANES).filter(|i| far & (1 << i) != 0) {
+                self.block.recentre(i);
+            }
+        }
+        (decided, advanced.events)
+    }
+
+    /// The row of lane `i`'s decided sample.
+    pub(super) fn finish(&mut self, model: &Model, params: &Params<K>, i: usize) -> Row {
+        let sample = self.samples[i].expect("a decided lane holds a sample");
+        let soil = self.own.as_ref().unwrap_or(params).soil.as_ref();
+        let mut summary = lane_summary(model, soil, &self.block, i);
+        if let (Some(m), Some(c)) = (&model.control, &mut self.control[i]) {
+            let left = self.block.thrust.event_in_s.lane(i);
+            summary.control = Some(Box::new(c.finish(m, left)));
+        }
+        Row { sample, summary }
     }
 
     /// Steps the block, refilling lanes from `feed`, handing each decided sample's row to
@@ -230,45 +333,22 @@ impl<K: Kernel> Worker<K> {
                     self.load(scenario, model, i, index);
                 }
             }
-            let busy = self.block.busy_lanes() as u64;
-            if busy == 0 {
+            if self.block.busy_lanes() == 0 {
                 if feed.exhausted() {
                     return stats;
                 }
                 feed.wait();
                 continue;
             }
-            // The lanes change only between calls (a decision stops the kernel), so `busy`
-            // holds for every step of one.
-            let lane_params = self.own.as_ref().unwrap_or(params);
-            let advanced = K::advance(lane_params, &mut self.block, STEPS_PER_CALL);
-            stats.busy_lane_steps += busy * u64::from(advanced.steps);
-            stats.lane_steps += K::LANES as u64 * u64::from(advanced.steps);
-            let (decided, far) = (advanced.bits & 0xffff, advanced.bits >> 16);
-            if far != 0 {
-                for i in (0..K::LANES).filter(|i| far & (1 << i) != 0) {
-                    self.block.recentre(i);
-                }
+            let (decided, events) = self.advance(params, &mut stats);
+            for i in (0..K::LANES).filter(|i| decided & (1 << i) != 0) {
+                deliver(self.finish(model, params, i));
+                self.refill(scenario, model, feed, i);
             }
-            if decided != 0 {
-                for i in 0..K::LANES {
-                    if decided & (1 << i) != 0 {
-                        let sample = self.samples[i].expect("a decided lane holds a sample");
-                        let soil = self.own.as_ref().unwrap_or(params).soil.as_ref();
-                        let mut summary = lane_summary(model, soil, &self.block, i);
-                        if let (Some(m), Some(c)) = (&model.control, &mut self.control[i]) {
-                            let left = self.block.thrust.event_in_s.lane(i);
-                            summary.control = Some(Box::new(c.finish(m, left)));
-                        }
-                        deliver(Row { sample, summary });
-                        self.refill(scenario, model, feed, i);
-                    }
-                }
-            }
-            if advanced.events != 0
+            if events != 0
                 && let Some(m) = &model.control
             {
-                self.control_events(m, advanced.events);
+                self.control_events(m, events);
             }
         }
     }
