@@ -201,3 +201,118 @@ impl<K: Kernel> Cohort<K> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::reference::Model;
+    use crate::scenario::Scenario;
+    use crate::sweep::kernel_params;
+    use kernels::block::Block;
+    use kernels::isa::{Isa, Kernel, KernelKind, Precision, WithKernel};
+
+    /// Writes `base`, `base + 1`, ... into every 8 bytes of `x` (a struct of lanes of
+    /// numbers and masks: any bits are a value of it).
+    fn fill<T: Copy>(x: &mut T, base: f64) {
+        let p = std::ptr::from_mut(x).cast::<f64>();
+        for k in 0..size_of::<T>() / 8 {
+            // SAFETY: within `x`, whose fields are numbers of any bits.
+            unsafe { p.add(k).write_unaligned(base + k as f64) };
+        }
+    }
+
+    /// Every number of `b`'s state a distinct value from `base` on.
+    fn filled<K: Kernel>(b: &mut Block<K>, base: f64) {
+        let mut at = base;
+        let mut next = || {
+            at += 1000.0;
+            at
+        };
+        for leg in &mut b.legs {
+            fill(leg, next());
+        }
+        for step in &mut b.leg_step {
+            fill(step, next());
+        }
+        fill(&mut b.surface, next());
+        // (The tiles' arrays are `MAX_LANES` long: past `K::LANES`, no lane's, as new.)
+        b.surface.tile[K::LANES..].fill(0);
+        b.surface.rock_tile[K::LANES..].fill(0);
+        fill(&mut b.track, next());
+        fill(&mut b.thrust, next());
+        fill(&mut b.t_s, next());
+        fill(&mut b.t_error_s, next());
+        fill(&mut b.position_m, next());
+        fill(&mut b.velocity_m_s, next());
+        fill(&mut b.attitude, next());
+        fill(&mut b.rotation, next());
+        fill(&mut b.rate_rad_s, next());
+        fill(&mut b.active, next());
+        fill(&mut b.contact_step_s, next());
+        fill(&mut b.force_n, next());
+        fill(&mut b.moment_n_m, next());
+        fill(&mut b.start_position_m, next());
+        fill(&mut b.start_velocity_m_s, next());
+        fill(&mut b.start_rotation, next());
+        fill(&mut b.start_rate_rad_s, next());
+        fill(&mut b.start_t_s, next());
+        fill(&mut b.dt_s, next());
+    }
+
+    /// `Block::move_lane` moves every number of a lander's state: a block whose every
+    /// number is distinct, moved lane by lane into a block of other numbers in another
+    /// order and back into a third, comes back as it was (printed: masks as the lanes
+    /// hold them). A field `move_lane` forgot would keep the third block's number. The
+    /// sub-structs (legs, steps, surface, track, thrust) are filled whole, so a field added
+    /// to them is checked without naming it here; with every f64 kernel this CPU has.
+    #[test]
+    fn a_moved_lane_carries_every_number_of_its_state() {
+        struct Moves;
+        impl WithKernel for Moves {
+            type Output = ();
+            fn run<K: Kernel>(self) {
+                let model = Model::new(&Scenario::default());
+                let params = kernel_params::<K>(&model);
+                let fresh = || Block::<K>::new(&params);
+                let (mut a, mut canonical, mut b, mut c) = (fresh(), fresh(), fresh(), fresh());
+                filled(&mut a, 0.5);
+                // Moved once, its masks hold what a lane's mask holds (all bits or none).
+                for i in 0..K::LANES {
+                    canonical.move_lane(i, &a, i);
+                }
+                filled(&mut b, 1e6 + 0.25);
+                filled(&mut c, 2e6 + 0.75);
+                let other = |i: usize| (i + 3) % K::LANES;
+                for i in 0..K::LANES {
+                    b.move_lane(other(i), &canonical, i);
+                }
+                for i in 0..K::LANES {
+                    c.move_lane(i, &b, other(i));
+                }
+                let (got, want) = (format!("{c:?}"), format!("{canonical:?}"));
+                // Where they part, with the field before it.
+                let at = got
+                    .bytes()
+                    .zip(want.bytes())
+                    .position(|(a, b)| a != b)
+                    .unwrap_or(got.len().min(want.len()));
+                let from = got[..at]
+                    .rfind(": ")
+                    .map_or(0, |i| got[..i].rfind(' ').unwrap_or(0));
+                assert!(
+                    got == want,
+                    "{}: a number not moved, at {}",
+                    K::NAME,
+                    &got[from..(at + 40).min(got.len())]
+                );
+                assert_ne!(format!("{b:?}"), format!("{canonical:?}"), "{}", K::NAME);
+            }
+        }
+        for isa in Isa::ALL.into_iter().filter(|i| i.available()) {
+            KernelKind {
+                isa,
+                precision: Precision::F64,
+            }
+            .dispatch(Moves);
+        }
+    }
+}
