@@ -9,6 +9,7 @@ use crate::output::OutputSet;
 use crate::output::format::Format;
 use crate::run::KernelChoice;
 use crate::run::site::{Made, SiteSettings};
+use crate::shape::{GravitySum, OPENING};
 use crate::site::estimate::Window;
 use crate::sweep::Shard;
 use std::path::PathBuf;
@@ -20,6 +21,19 @@ pub enum Units {
     M,
     /// Kilometres (as PDS shape models are given).
     Km,
+}
+
+/// How the facets' gravity is summed (`--gravity`).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GravityChoice {
+    /// Exactly up to 16,384 facets, by the tree above.
+    Auto,
+    /// Every facet and edge at every facet, in closed form (time grows as the square of
+    /// the facets).
+    Exact,
+    /// The facets near each facet in closed form, groups of facets farther away by their
+    /// moments (time grows as F log F; error about 3e-5 of the attraction at most).
+    Tree,
 }
 
 /// Flags of `touchdown site`.
@@ -83,6 +97,10 @@ pub struct SiteArgs {
     /// SIMD kernel, as for `touchdown sweep`.
     #[arg(long, value_name = "KERNEL", default_value = "auto", value_parser = parse_kernel)]
     pub kernel: KernelChoice,
+    /// How the facets' gravity is summed: exact, by a tree of the facets, or auto (exact
+    /// up to 16,384 facets).
+    #[arg(long, value_enum, default_value = "auto")]
+    pub gravity: GravityChoice,
 }
 
 /// A finite number greater than 0.
@@ -127,6 +145,17 @@ fn map_files(args: &SiteArgs) -> [PathBuf; 4] {
     ]
 }
 
+/// How the facets' gravity was summed, in words (the log and the table's metadata).
+fn gravity_text(sum: GravitySum) -> String {
+    match sum {
+        GravitySum::Exact => "summed exactly".into(),
+        GravitySum::Tree { opening } => format!(
+            "summed by the tree of the facets (opening {opening}, moments to degree {})",
+            crate::shape::ORDER
+        ),
+    }
+}
+
 /// Runs `touchdown site`.
 pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
     // As a sweep refuses it; how many more a map needs is known once the body's slopes and
@@ -157,6 +186,11 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         threads: args.threads.threads,
         quiet: args.quiet,
         kernel: args.kernel,
+        gravity: match args.gravity {
+            GravityChoice::Auto => None,
+            GravityChoice::Exact => Some(GravitySum::Exact),
+            GravityChoice::Tree => Some(GravitySum::Tree { opening: OPENING }),
+        },
     };
     let files = map_files(args);
     // The map's files are refused before the facets and the sweep if one may not be
@@ -196,6 +230,7 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
             sweep_file: &sweep_name,
             sweep_text: &run.sweep_text,
             samples: args.samples,
+            gravity: &gravity_text(run.gravity_sum),
         },
     )?;
     let scenario = args
@@ -224,10 +259,11 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
     print_out(
         "the map's summary",
         &format!(
-            "the sweep {} -> {}\nthe facets' gravity in {:.1} s\n\n{text}\nwrote {}, {}, {} and {}\n",
+            "the sweep {} -> {}\nthe facets' gravity in {:.1} s, {}\n\n{text}\nwrote {}, {}, {} and {}\n",
             run.log,
             run.sweep_file.display(),
             run.gravity_s,
+            gravity_text(run.gravity_sum),
             table.display(),
             md.display(),
             png.display(),

@@ -13,7 +13,10 @@ use crate::output::format::Format;
 use crate::output::sweep::SweepFile;
 use crate::reference::Outcome;
 use crate::scenario::Scenario;
-use crate::shape::{FacetGravity, Polyhedron, facet_gravity, read_shape, roughness_deg, unit_axis};
+use crate::shape::{
+    FacetGravity, FacetTree, GravitySum, Polyhedron, facet_gravity, read_shape, roughness_deg,
+    tree_facets, unit_axis,
+};
 use crate::site::estimate::{Counts, Window, expected_samples, grid_bytes};
 use crate::site::warnings::{BodyFigures, implausible_body, sweep_failures};
 use crate::site::{Body, SLOPE_LIMIT_DEG, STEEP_START_DEG, Site, SiteFacet, SweepTally};
@@ -55,6 +58,9 @@ pub struct SiteSettings {
     pub quiet: bool,
     /// The kernel the sweep runs with (`--kernel`).
     pub kernel: KernelChoice,
+    /// How the facets' gravity is summed; `None`: by the facets' count
+    /// ([`GravitySum::auto`]).
+    pub gravity: Option<GravitySum>,
 }
 
 /// What a site's run leaves: the map, its sweep and a line on what was done with it.
@@ -79,6 +85,8 @@ pub struct SiteRun {
     pub warnings: Vec<String>,
     /// Seconds to compute the facets' gravity.
     pub gravity_s: f64,
+    /// How it was summed.
+    pub gravity_sum: GravitySum,
     /// The folder, locked until the map is written.
     pub lock: FolderLock,
 }
@@ -126,25 +134,60 @@ fn gravity_estimate(poly: &Polyhedron, axis: [f64; 3], omega: f64, threads: usiz
     (per_facet_s * n as f64 / threads.max(1) as f64, k)
 }
 
+/// The estimate of the tree's sums on `threads` threads, s, from the time of a few of its
+/// leaves spread over the model (at most 16, for at most about 0.2 s), and how many.
+fn tree_estimate(tree: &FacetTree, threads: usize) -> (f64, usize) {
+    let n = tree.leaves();
+    let tried = n.min(16);
+    let started = Instant::now();
+    let mut k = 0;
+    while k < tried && (k == 0 || started.elapsed().as_secs_f64() < 0.2) {
+        std::hint::black_box(tree.leaf_sums(k * n / tried));
+        k += 1;
+    }
+    let per_leaf_s = started.elapsed().as_secs_f64() / k.max(1) as f64;
+    (per_leaf_s * n as f64 / threads.max(1) as f64, k)
+}
+
 /// Says, before it starts, how long the facets' gravity will take where that is more than
-/// `GRAVITY_TOLD_S`: it costs the square of the facets, and a terminal's bar is all that
-/// would say so.
-fn tell_gravity_time(args: &SiteSettings, poly: &Polyhedron, axis: [f64; 3], omega: f64) {
+/// `GRAVITY_TOLD_S` (a terminal's bar is all that would say so): summed exactly it costs
+/// the square of the facets, by the tree (`tree`) about `F log F`.
+fn tell_gravity_time(
+    args: &SiteSettings,
+    poly: &Polyhedron,
+    tree: Option<&FacetTree>,
+    axis: [f64; 3],
+    omega: f64,
+) {
     let threads = rayon::current_num_threads();
+    let n = poly.mesh().facet_geometry().len();
+    let plural = if threads == 1 { "" } else { "s" };
+    let shape = args.shape.display();
+    if let Some(tree) = tree {
+        let (estimate_s, measured) = tree_estimate(tree, threads);
+        if estimate_s > GRAVITY_TOLD_S {
+            warn(&format!(
+                "{shape}: the gravity of its {n} facets will take about {} on {threads} \
+                 thread{plural} by the tree of the facets (measured on {measured} of its {} \
+                 leaves); Ctrl-C stops it",
+                super::eta::duration(estimate_s),
+                tree.leaves(),
+            ));
+        }
+        return;
+    }
     let (estimate_s, measured) = gravity_estimate(poly, axis, omega, threads);
     if estimate_s <= GRAVITY_TOLD_S {
         return;
     }
-    let n = poly.mesh().facet_geometry().len();
     // The cost goes as the square of the facets.
     let ten_minutes = (n as f64 * (600.0 / estimate_s).sqrt()).floor();
     warn(&format!(
-        "{}: the gravity of its {n} facets will take about {} on {threads} thread{} \
-         (measured on {measured} of them; it grows as the square of the facets: a model of \
-         {ten_minutes} facets takes about 10 min); Ctrl-C stops it",
-        args.shape.display(),
+        "{shape}: the gravity of its {n} facets summed exactly will take about {} on {threads} \
+         thread{plural} (measured on {measured} of them; it grows as the square of the facets: \
+         a model of {ten_minutes} facets takes about 10 min; --gravity tree sums it in about \
+         F log F); Ctrl-C stops it",
         super::eta::duration(estimate_s),
-        if threads == 1 { "" } else { "s" }
     ));
 }
 
@@ -178,11 +221,11 @@ fn warn_off_centre(shape: &Path, poly: &Polyhedron) {
 }
 
 /// Reads and checks the shape model, and computes every facet's gravity and slope on `pool`
-/// and its roughness.
+/// (summed as `args.gravity` says) and its roughness.
 fn body_of(
     args: &SiteSettings,
     pool: &rayon::ThreadPool,
-) -> anyhow::Result<(Body, Vec<FacetGravity>, Vec<f64>)> {
+) -> anyhow::Result<(Body, Vec<FacetGravity>, Vec<f64>, GravitySum)> {
     let mesh = read_shape(&args.shape, args.metres_per_unit)?
         .check()
         .map_err(|e| anyhow!("{}: {e}", args.shape.display()))?;
@@ -203,14 +246,20 @@ fn body_of(
     }
     let axis = unit_axis(args.spin_axis).map_err(|e| anyhow!("--spin-axis: {e}"))?;
     let omega = 2.0 * std::f64::consts::PI / (args.spin_period_h * 3600.0);
-    pool.install(|| tell_gravity_time(args, &poly, axis, omega));
-    let bar = super::execute::progress_bar(
-        poly.mesh().facet_geometry().len() as u64,
-        !args.quiet,
-        "facets",
-    );
-    let facets = pool.install(|| crate::shape::facets_told(&poly, axis, omega, || bar.inc(1)));
+    let count = poly.mesh().facet_geometry().len();
+    let sum = args.gravity.unwrap_or(GravitySum::auto(count));
+    let tree = match sum {
+        GravitySum::Exact => None,
+        GravitySum::Tree { opening } => Some(pool.install(|| FacetTree::new(poly.mesh(), opening))),
+    };
+    pool.install(|| tell_gravity_time(args, &poly, tree.as_ref(), axis, omega));
+    let bar = super::execute::progress_bar(count as u64, !args.quiet, "facets");
+    let facets = pool.install(|| match &tree {
+        None => crate::shape::facets_told(&poly, axis, omega, sum, |k| bar.inc(k as u64)),
+        Some(tree) => tree_facets(&poly, tree, axis, omega, |k| bar.inc(k as u64)),
+    });
     bar.finish_and_clear();
+    drop(tree);
     let mesh = poly.mesh();
     let roughness = roughness_deg(mesh);
     let body = Body {
@@ -233,7 +282,7 @@ fn body_of(
         area_m2: mesh.surface_area_m2(),
         centre_of_mass_m: poly.centre_of_mass_m(),
     };
-    Ok((body, facets, roughness))
+    Ok((body, facets, roughness, sum))
 }
 
 /// The ranges the sweep draws: slopes from 0 to the steepest facet's (below
@@ -617,7 +666,7 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
     }
     let pool = worker_pool(args.threads)?;
     let started = std::time::Instant::now();
-    let (body, gravity, roughness) = body_of(args, &pool)?;
+    let (body, gravity, roughness, gravity_sum) = body_of(args, &pool)?;
     let gravity_s = started.elapsed().as_secs_f64();
     let (slopes, gravities) = ranges(&gravity, args.window)?;
     check_grid(args, slopes, gravities)?;
@@ -692,6 +741,7 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
         t_max_s: scenario.simulation.t_max_s,
         warnings,
         gravity_s,
+        gravity_sum,
         lock,
     })))
 }

@@ -2,7 +2,8 @@
 //! plus the centrifugal acceleration of the body's spin, against its outward normal.
 
 use super::error::ShapeError;
-use super::gravity::Polyhedron;
+use super::gravity::{G, Polyhedron};
+use super::tree::{FacetTree, OPENING};
 use super::vec3::{add, cross, dot, norm, scale};
 use rayon::prelude::*;
 
@@ -91,6 +92,38 @@ pub fn slope_deg(normal: [f64; 3], effective: [f64; 3]) -> f64 {
     cos.acos().to_degrees()
 }
 
+/// How the facets' attraction is summed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GravitySum {
+    /// Every facet and edge at every facet, in closed form ([`Polyhedron::field_on_facet`]):
+    /// about `2.5 F^2` terms for `F` facets.
+    Exact,
+    /// The facets near a point in closed form, groups of facets far from it by their
+    /// moments ([`FacetTree`]), opened at this angle: about `F log F` terms.
+    Tree {
+        /// The opening angle, in `(0, 1)` ([`crate::shape::OPENING`] by default).
+        opening: f64,
+    },
+}
+
+/// The most facets [`GravitySum::auto`] sums exactly: the exact sum of so many takes about
+/// 15 s on 2 cores, and the landing-site maps of the README (1,996 and 12,288 facets) stay
+/// as they were.
+pub const EXACT_UP_TO: usize = 16_384;
+
+impl GravitySum {
+    /// The exact sum for a model of at most [`EXACT_UP_TO`] facets, the tree at
+    /// [`OPENING`] above.
+    #[must_use]
+    pub fn auto(facets: usize) -> Self {
+        if facets <= EXACT_UP_TO {
+            GravitySum::Exact
+        } else {
+            GravitySum::Tree { opening: OPENING }
+        }
+    }
+}
+
 /// Facet `facet`'s (0-based) gravity and slope on `poly` spinning at `omega_rad_s` about
 /// `spin_axis_unit` (see [`centrifugal`]); the attraction as [`Polyhedron::field_on_facet`]
 /// takes it. Panics if `facet` is not a facet of the mesh (a caller's mistake, never the
@@ -102,9 +135,20 @@ pub fn facet_gravity(
     spin_axis_unit: [f64; 3],
     omega_rad_s: f64,
 ) -> FacetGravity {
+    let gravity = poly.field_on_facet(facet).acceleration_m_s2;
+    with_spin(poly, facet, gravity, spin_axis_unit, omega_rad_s)
+}
+
+/// Facet `facet`'s numbers, given its attraction `gravity` (m/s^2).
+fn with_spin(
+    poly: &Polyhedron,
+    facet: usize,
+    gravity: [f64; 3],
+    spin_axis_unit: [f64; 3],
+    omega_rad_s: f64,
+) -> FacetGravity {
     let g = poly.mesh().facet_geometry()[facet];
     let c = g.centroid_m;
-    let gravity = poly.field_on_facet(facet).acceleration_m_s2;
     let effective = add(gravity, centrifugal(spin_axis_unit, omega_rad_s, c));
     let (latitude_deg, longitude_deg) = latitude_longitude(spin_axis_unit, c);
     FacetGravity {
@@ -121,27 +165,73 @@ pub fn facet_gravity(
 }
 
 /// Every facet's gravity and slope, in facet order ([`facet_gravity`]), on all of rayon's
-/// threads: each facet costs one pass over the edges and facets, so a model of `F` facets
-/// costs about `2.5 F^2` terms. The result does not depend on the number of threads.
+/// threads, summed exactly: each facet costs one pass over the edges and facets, so a
+/// model of `F` facets costs about `2.5 F^2` terms. The result does not depend on the
+/// number of threads.
 #[must_use]
 pub fn facets(poly: &Polyhedron, spin_axis_unit: [f64; 3], omega_rad_s: f64) -> Vec<FacetGravity> {
-    facets_told(poly, spin_axis_unit, omega_rad_s, || {})
+    facets_told(poly, spin_axis_unit, omega_rad_s, GravitySum::Exact, |_| {})
 }
 
-/// [`facets`], calling `done` as each facet is done (from any thread: a progress bar).
+/// Every facet's gravity and slope, in facet order, summed as `sum` says, on all of rayon's
+/// threads, calling `done(k)` as `k` more facets are done (from any thread: a progress
+/// bar). The result does not depend on the number of threads. The tree's attraction is
+/// `-G rho` times [`FacetTree::sums`].
 #[must_use]
 pub fn facets_told(
     poly: &Polyhedron,
     spin_axis_unit: [f64; 3],
     omega_rad_s: f64,
-    done: impl Fn() + Sync,
+    sum: GravitySum,
+    done: impl Fn(usize) + Sync,
 ) -> Vec<FacetGravity> {
-    (0..poly.mesh().facet_geometry().len())
+    let count = poly.mesh().facet_geometry().len();
+    let gravity: Vec<[f64; 3]> = match sum {
+        GravitySum::Exact => (0..count)
+            .into_par_iter()
+            .map(|f| {
+                let g = poly.field_on_facet(f).acceleration_m_s2;
+                done(1);
+                g
+            })
+            .collect(),
+        GravitySum::Tree { opening } => {
+            let tree = FacetTree::new(poly.mesh(), opening);
+            return tree_facets(poly, &tree, spin_axis_unit, omega_rad_s, done);
+        }
+    };
+    spun(poly, gravity, spin_axis_unit, omega_rad_s)
+}
+
+/// [`facets_told`] by the tree `tree` of `poly`'s mesh, built before (for an estimate of
+/// the time from a few of its leaves, [`FacetTree::leaf_sums`]).
+#[must_use]
+pub fn tree_facets(
+    poly: &Polyhedron,
+    tree: &FacetTree,
+    spin_axis_unit: [f64; 3],
+    omega_rad_s: f64,
+    done: impl Fn(usize) + Sync,
+) -> Vec<FacetGravity> {
+    let g_rho = G * poly.density_kg_m3();
+    let gravity = tree
+        .sums(done)
+        .into_iter()
+        .map(|s| scale(s, -g_rho))
+        .collect();
+    spun(poly, gravity, spin_axis_unit, omega_rad_s)
+}
+
+/// Every facet's numbers from its attraction.
+fn spun(
+    poly: &Polyhedron,
+    gravity: Vec<[f64; 3]>,
+    spin_axis_unit: [f64; 3],
+    omega_rad_s: f64,
+) -> Vec<FacetGravity> {
+    gravity
         .into_par_iter()
-        .map(|f| {
-            let g = facet_gravity(poly, f, spin_axis_unit, omega_rad_s);
-            done();
-            g
-        })
+        .enumerate()
+        .map(|(f, g)| with_spin(poly, f, g, spin_axis_unit, omega_rad_s))
         .collect()
 }

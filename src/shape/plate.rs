@@ -42,16 +42,28 @@ pub fn parse_plate(text: &str, name: &str, metres_per_unit: f64) -> Result<Mesh,
 }
 
 /// A file's non-blank lines as text, numbered from 1 (blank lines counted), each at most
-/// [`MAX_LINE_BYTES`] bytes.
-struct Lines<'n, R> {
+/// [`MAX_LINE_BYTES`] bytes (also the ICQ reader's, icq.rs).
+pub(super) struct Lines<'n, R> {
     reader: R,
     name: &'n str,
     buf: Vec<u8>,
-    line: usize,
+    /// The number of the last line read.
+    pub(super) line: usize,
 }
 
-impl<R: BufRead> Lines<'_, R> {
-    fn error(&self, line: usize, reason: String) -> ShapeError {
+impl<'n, R: BufRead> Lines<'n, R> {
+    /// The lines of `reader`, its file named `name` in messages.
+    pub(super) fn new(reader: R, name: &'n str) -> Self {
+        Lines {
+            reader,
+            name,
+            buf: Vec::new(),
+            line: 0,
+        }
+    }
+
+    /// The error of line `line`: the file, the line and `reason`.
+    pub(super) fn error(&self, line: usize, reason: String) -> ShapeError {
         ShapeError::Line {
             file: self.name.to_string(),
             line,
@@ -60,7 +72,7 @@ impl<R: BufRead> Lines<'_, R> {
     }
 
     /// The next line that is not blank and its number, or `None` at the end of the file.
-    fn next(&mut self) -> Result<Option<(usize, &str)>, ShapeError> {
+    pub(super) fn next(&mut self) -> Result<Option<(usize, &str)>, ShapeError> {
         loop {
             self.buf.clear();
             let read = (&mut self.reader)
@@ -90,7 +102,7 @@ impl<R: BufRead> Lines<'_, R> {
 }
 
 /// A word of the file for a message: quoted, escaped, at most 24 characters.
-fn quoted(word: &str) -> String {
+pub(super) fn quoted(word: &str) -> String {
     let short: String = word.chars().take(24).collect();
     let more = if short.len() < word.len() { "..." } else { "" };
     format!("'{}{more}'", short.escape_debug())
@@ -245,12 +257,7 @@ pub(super) fn parse<R: BufRead>(reader: R, name: &str, scale: f64) -> Result<Mes
             "metres per unit of the shape model {name} must be a positive number, not {scale}"
         )));
     }
-    let mut lines = Lines {
-        reader,
-        name,
-        buf: Vec::new(),
-        line: 0,
-    };
+    let mut lines = Lines::new(reader, name);
     let mut mesh = Mesh::default();
     let (mut nv, mut nf) = (0usize, 0usize);
     let (mut counts_line, mut facets_line) = (0usize, 0usize);

@@ -1,26 +1,34 @@
 //! A shape model read by its content: a vertex-facet plate model (plate.rs) when the first
 //! line that is not blank holds one or two numbers and nothing else (the counts `NV NF` or
 //! `NV`; the plate reader refuses numbers that are no counts, `-5 320`, as a plate model's
-//! header), a Wavefront OBJ file (obj.rs) otherwise. No OBJ file starts so (its lines
-//! start with a keyword), so an OBJ file is read as [`read_obj`](super::read_obj) reads it, with the same
-//! mesh or the same message, except that a UTF-8 byte order mark at its very start is read
-//! past here (for either format) and refused there.
+//! header), a Wavefront OBJ file (obj.rs) otherwise. A first line of one count (digits only)
+//! is a plate model's `NV` or an ICQ model's grid size `Q` (icq.rs): the next line that is
+//! not blank tells them apart, an ICQ model when it holds exactly three numbers (a row
+//! `x y z`, Fortran's `1.5D-3` a number too), a plate model otherwise (its rows `i x y z`
+//! hold four; a file of `NV` and a first row of three numbers, a plate model's refused
+//! either way, is refused as an ICQ model). No OBJ file starts so (its lines start with a
+//! keyword), so an OBJ file is read as [`read_obj`](super::read_obj) reads it, a plate file
+//! as [`read_plate`](super::read_plate) and an ICQ file as [`read_icq`](super::read_icq),
+//! with the same mesh or the same message, except that a UTF-8 byte order mark at its very
+//! start is read past here (for any format) and refused there. The lines read to choose are
+//! given back to the chosen reader, so its messages number the lines as in the file.
 
 use super::error::ShapeError;
+use super::icq;
 use super::mesh::Mesh;
 use super::obj::{self, MAX_LINE_BYTES};
 use super::plate::{self, is_count};
 use std::io::{BufRead, BufReader, Cursor, Read};
 use std::path::Path;
 
-/// Reads the shape model at `path`, plate or OBJ by its content, its coordinates multiplied
+/// Reads the shape model at `path`, plate, ICQ or OBJ by its content, its coordinates multiplied
 /// by `metres_per_unit`. The mesh is not yet checked: see [`Mesh::check`].
 pub fn read_shape(path: &Path, metres_per_unit: f64) -> Result<Mesh, ShapeError> {
     let (file, name) = super::error::open(path)?;
     read(file, &name, metres_per_unit)
 }
 
-/// Parses the text of a shape model named `name` (in messages), plate or OBJ by its
+/// Parses the text of a shape model named `name` (in messages), plate, ICQ or OBJ by its
 /// content, its coordinates multiplied by `metres_per_unit`. The mesh is not yet checked.
 pub fn parse_shape(text: &str, name: &str, metres_per_unit: f64) -> Result<Mesh, ShapeError> {
     read(text.as_bytes(), name, metres_per_unit)
@@ -45,15 +53,71 @@ fn is_plate_counts(line: &[u8]) -> bool {
     n > 0
 }
 
-/// Reads up to the first line that is not blank, chooses the format by it, and gives the
-/// chosen reader the file as it was: the blank lines as empty ones (both readers skip them,
-/// and the line numbers stay), then the line itself and the rest, untouched.
+/// Whether a line holds one count (digits only) and nothing else: a plate model's `NV` or
+/// an ICQ model's `Q`.
+fn is_one_count(line: &[u8]) -> bool {
+    let Ok(text) = std::str::from_utf8(line) else {
+        return false;
+    };
+    let mut words = text.split_whitespace();
+    matches!((words.next(), words.next()), (Some(word), None) if is_count(word))
+}
+
+/// Whether a line holds exactly three numbers: an ICQ model's row `x y z`.
+fn is_three_numbers(line: &[u8]) -> bool {
+    let Ok(text) = std::str::from_utf8(line) else {
+        return false;
+    };
+    let mut n = 0;
+    for word in text.split_whitespace() {
+        n += 1;
+        if n > 3 || icq::number(word).is_none() {
+            return false;
+        }
+    }
+    n == 3
+}
+
+/// The format a file is read in.
+#[derive(Clone, Copy, PartialEq)]
+enum Format {
+    Obj,
+    Plate,
+    Icq,
+}
+
+/// Reads the next line of `reader` into `line` (cleared first), at most one byte more than
+/// [`MAX_LINE_BYTES`]: the bytes read, 0 at the end of the file.
+fn next_line<R: BufRead>(
+    reader: &mut R,
+    line: &mut Vec<u8>,
+    name: &str,
+) -> Result<usize, ShapeError> {
+    line.clear();
+    reader
+        .take(MAX_LINE_BYTES as u64 + 1)
+        .read_until(b'\n', line)
+        .map_err(|e| ShapeError::Read {
+            file: name.to_string(),
+            reason: e.to_string(),
+        })
+}
+
+/// Whether a line read by [`next_line`] is longer than [`MAX_LINE_BYTES`].
+fn too_long(line: &[u8]) -> bool {
+    line.len() > MAX_LINE_BYTES && line.last() != Some(&b'\n')
+}
+
+/// Reads up to the first line that is not blank, chooses the format by it (and, after one
+/// count, by the next line that is not blank), and gives the chosen reader the file as it
+/// was: the blank lines as empty ones (every reader skips them, and the line numbers stay),
+/// then the lines read and the rest, untouched.
 fn read<R: BufRead>(mut reader: R, name: &str, scale: f64) -> Result<Mesh, ShapeError> {
     if !(scale.is_finite() && scale > 0.0) {
         // The OBJ reader's message, before anything is read (as read_obj gives it).
         return obj::parse(&b""[..], name, scale);
     }
-    // A UTF-8 byte order mark, as some Windows tools write one, is no part of either format.
+    // A UTF-8 byte order mark, as some Windows tools write one, is no part of any format.
     let head = reader.fill_buf().map_err(|e| ShapeError::Read {
         file: name.to_string(),
         reason: e.to_string(),
@@ -63,38 +127,51 @@ fn read<R: BufRead>(mut reader: R, name: &str, scale: f64) -> Result<Mesh, Shape
     }
     let mut blank = 0u64;
     let mut first = Vec::new();
-    let is_plate = loop {
-        first.clear();
-        let read = (&mut reader)
-            .take(MAX_LINE_BYTES as u64 + 1)
-            .read_until(b'\n', &mut first)
-            .map_err(|e| ShapeError::Read {
-                file: name.to_string(),
-                reason: e.to_string(),
-            })?;
-        if read == 0 {
-            break false;
-        }
-        // A line too long for either reader goes to the OBJ reader, which refuses it.
-        let too_long = first.len() > MAX_LINE_BYTES && first.last() != Some(&b'\n');
-        if too_long {
-            break false;
+    let mut format = loop {
+        // A line too long for any reader goes to the OBJ reader, which refuses it.
+        if next_line(&mut reader, &mut first, name)? == 0 || too_long(&first) {
+            break Format::Obj;
         }
         if !first.iter().all(u8::is_ascii_whitespace) {
-            break is_plate_counts(&first);
+            break if is_plate_counts(&first) {
+                Format::Plate
+            } else {
+                Format::Obj
+            };
         }
         blank += 1;
     };
+    // One count: `NV` of a plate model or `Q` of an ICQ model, told apart by the next line
+    // (one too long, or none, is the plate reader's to refuse, as before).
+    let mut between = 0u64;
+    let mut second = Vec::new();
+    if format == Format::Plate && is_one_count(&first) {
+        format = loop {
+            if next_line(&mut reader, &mut second, name)? == 0 || too_long(&second) {
+                break Format::Plate;
+            }
+            if !second.iter().all(u8::is_ascii_whitespace) {
+                break if is_three_numbers(&second) {
+                    Format::Icq
+                } else {
+                    Format::Plate
+                };
+            }
+            between += 1;
+        };
+    }
     let replayed = BufReader::new(
         std::io::repeat(b'\n')
             .take(blank)
             .chain(Cursor::new(first))
+            .chain(std::io::repeat(b'\n').take(between))
+            .chain(Cursor::new(second))
             .chain(reader),
     );
-    if is_plate {
-        plate::parse(replayed, name, scale)
-    } else {
-        obj::parse(replayed, name, scale)
+    match format {
+        Format::Plate => plate::parse(replayed, name, scale),
+        Format::Icq => icq::parse(replayed, name, scale),
+        Format::Obj => obj::parse(replayed, name, scale),
     }
 }
 

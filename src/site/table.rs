@@ -24,6 +24,8 @@ pub struct About<'a> {
     pub sweep_text: &'a str,
     /// Its samples.
     pub samples: u64,
+    /// How the facets' gravity was summed, in words.
+    pub gravity: &'a str,
 }
 
 /// A column of one `f64` per facet.
@@ -85,6 +87,7 @@ fn metadata(site: &Site, about: &About<'_>) -> HashMap<String, String> {
             "touchdown.site.safe_area_fraction_point_estimate",
             site.safe_area_fraction_point_estimate().to_string(),
         ),
+        ("touchdown.site.gravity", about.gravity.to_string()),
         ("touchdown.site.sweep_file", about.sweep_file.to_string()),
         ("touchdown.samples", about.samples.to_string()),
         ("touchdown.scenario", about.sweep_text.to_string()),

@@ -1,9 +1,10 @@
 //! The shape model and its gravity (`touchdown::shape`) against closed forms: a sphere, a
 //! cube, a far-away point mass, the gradient of the potential, a spinning sphere's slope,
-//! each facet's roughness on the regular solids and icospheres; bad meshes and bad OBJ
-//! and plate files refused.
+//! each facet's roughness on the regular solids and icospheres; bad meshes and bad OBJ,
+//! plate and ICQ files refused.
 
 mod gravity;
+mod icq;
 mod intersect;
 mod obj;
 mod plate;
@@ -11,6 +12,7 @@ mod plate_refusals;
 mod refusals;
 mod roughness;
 mod slope;
+mod tree;
 
 use std::collections::HashMap;
 use touchdown::shape::{CheckedMesh, Mesh};
@@ -213,4 +215,66 @@ impl Stream {
     pub fn below(&mut self, n: usize) -> usize {
         (self.next() % n as u64) as usize
     }
+}
+
+/// The mutations of a shape reader's fuzz test, drawn from `s`: each sound file of `files`
+/// with 1 to 4 of its bytes replaced by `bytes` (`rounds[0]` times), 1 to 3 of its words by
+/// `words` (`rounds[1]`), a line removed, repeated or swapped (`rounds[2]`), and cut at every
+/// byte (only the whole file, with or without its last newline, is sound: asserted); then
+/// `rounds[3]` files of up to 200 random `bytes`. Each goes through `survive` (read, check,
+/// evaluate, and whether it was sound: never a panic). Returns how many files with bytes
+/// replaced were sound (some must be, or the mutations never reach the reader's end).
+pub fn fuzz(
+    s: &mut Stream,
+    files: &[String],
+    (bytes, words): (&[u8], &[&str]),
+    rounds: [usize; 4],
+    survive: impl Fn(&str) -> bool,
+) -> usize {
+    let mut sound = 0;
+    for file in files {
+        for _ in 0..rounds[0] {
+            let mut b = file.as_bytes().to_vec();
+            for _ in 0..1 + s.below(4) {
+                let at = s.below(b.len());
+                b[at] = bytes[s.below(bytes.len())];
+            }
+            if survive(&String::from_utf8_lossy(&b)) {
+                sound += 1;
+            }
+        }
+        for _ in 0..rounds[1] {
+            let mut w: Vec<&str> = file.split(' ').collect();
+            for _ in 0..1 + s.below(3) {
+                let at = s.below(w.len());
+                w[at] = words[s.below(words.len())];
+            }
+            survive(&w.join(" "));
+        }
+        let lines: Vec<&str> = file.split_inclusive('\n').collect();
+        for _ in 0..rounds[2] {
+            let mut l = lines.clone();
+            let (i, j) = (s.below(l.len()), s.below(l.len()));
+            match s.below(3) {
+                0 => {
+                    l.remove(i);
+                }
+                1 => l.insert(i, lines[j]),
+                _ => l.swap(i, j),
+            }
+            survive(&l.concat());
+        }
+        let cut = (0..=file.len())
+            .filter(|&n| file.is_char_boundary(n) && survive(&file[..n]))
+            .count();
+        let eol = if file.ends_with("\r\n") { 3 } else { 2 };
+        assert_eq!(cut, eol, "{file}");
+    }
+    for _ in 0..rounds[3] {
+        let b: Vec<u8> = (0..s.below(200))
+            .map(|_| bytes[s.below(bytes.len())])
+            .collect();
+        survive(&String::from_utf8_lossy(&b));
+    }
+    sound
 }
