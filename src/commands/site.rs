@@ -26,27 +26,29 @@ pub enum Units {
 /// How the facets' gravity is summed (`--gravity`).
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GravityChoice {
-    /// Exactly up to 16,384 facets, by the tree above.
+    /// Exact up to 16,384 facets, the tree above that.
     Auto,
     /// Every facet and edge at every facet, in closed form (time grows as the square of
     /// the facets).
     Exact,
     /// The facets near each facet in closed form, groups of facets farther away by their
-    /// moments (time grows as F log F; error about 3e-5 of the attraction at most).
+    /// moments (time grows as F log F; the attraction within 3e-5 of the exact sum's
+    /// wherever measured).
     Tree,
 }
 
 /// Flags of `touchdown site`.
 #[derive(clap::Args, Debug)]
 pub struct SiteArgs {
-    /// The shape model: a Wavefront OBJ file (`v` and `f` lines) or a vertex-facet plate
+    /// The shape model: a Wavefront OBJ file (`v` and `f` lines), a vertex-facet plate
     /// file (PDS `.tab`: `NV NF`, then rows `i x y z` and `j a b c`; SBMT `.plt`: the same
-    /// with `NF` on its own line after the vertices), told apart by content, of a closed
+    /// with `NF` on its own line after the vertices) or Gaskell's ICQ file (SPC's
+    /// `SHAPE.TXT`: `Q`, then `6 (Q+1)^2` rows `x y z`), told apart by content, of a closed
     /// surface whose facets wind counter-clockwise seen from outside, in the body-fixed frame
     /// (origin at the centre of mass).
     #[arg(value_name = "SHAPE")]
     pub shape: PathBuf,
-    /// Units of the shape file's coordinates (neither format says).
+    /// Units of the shape file's coordinates (no format says).
     #[arg(long, value_enum)]
     pub units: Units,
     /// Bulk density of the body, kg/m^3 (constant throughout).

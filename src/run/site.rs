@@ -381,7 +381,8 @@ fn names() -> Names {
             ),
             (
                 "gravity_m_s2",
-                "the gravities drawn, the facets' widened by --gravity-window",
+                "the gravities drawn, the facets' (summed as --gravity says) widened by \
+                 --gravity-window",
             ),
         ],
     }

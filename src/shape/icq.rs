@@ -181,8 +181,15 @@ fn row(text: &str, place: Place, scale: f64) -> Result<[f64; 3], String> {
         n += 1;
     }
     if n != 3 {
+        // A plate model of one count whose first row lost a number reads as ICQ: say so.
+        let plate = if n == 4 {
+            " (read as an ICQ model, its first row having three numbers: a plate model's \
+             rows have four)"
+        } else {
+            ""
+        };
         return Err(format!(
-            "an ICQ row has 3 numbers (x y z), not {n}: {place} expected"
+            "an ICQ row has 3 numbers (x y z), not {n}: {place} expected{plate}"
         ));
     }
     let mut xyz = [0.0; 3];

@@ -347,6 +347,15 @@ fn bad_icq_files_are_refused_naming_the_line() {
         )),
         "{e}"
     );
+    // A plate model of one count whose first row lost a number reads as ICQ (one count,
+    // then three numbers), and its message says why.
+    let plate = "4\n1 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n4\n1 1 3 2\n2 1 2 4\n3 1 4 3\n4 2 3 4\n";
+    let e = refused(plate);
+    assert!(
+        e.starts_with("t.txt, line 3: an ICQ row has 3 numbers (x y z), not 4")
+            && e.ends_with("a plate model's rows have four)"),
+        "{e}"
+    );
     // Interior rows are not copies: one moved is no refusal of the reader's (row 5 of face
     // 0 is its centre, line 2 + 3 + 1).
     let mut lines = good.clone();

@@ -108,6 +108,32 @@ fn summed_exactly_the_tree_is_the_polyhedron() {
     }
 }
 
+/// A mesh of at most [`touchdown::shape::LEAF`] facets is one leaf, summed facet by facet
+/// at any opening: the exact sum to rounding (as above). And the sums are the same bits on
+/// one thread and on four: each point's terms are added in one order whatever thread takes
+/// its leaf.
+#[test]
+fn a_small_mesh_is_summed_exactly_and_threads_do_not_change_a_bit() {
+    let cube = checked(twisted_box(10.0, 10.0, 10.0, 0.0, 1.0, [0.0; 3]));
+    assert!(tree_errors(&cube, &[OPENING])[0] < 1e-12);
+    let mesh = checked(ellipsoid([300.0, 200.0, 125.0], 4));
+    let tree = FacetTree::new(&mesh, OPENING);
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| tree.sums(|_| {}))
+    };
+    let (one, four) = (on(1), on(4));
+    assert_eq!(one.len(), 5_120);
+    assert!(
+        one.iter()
+            .zip(&four)
+            .all(|(a, b)| a.map(f64::to_bits) == b.map(f64::to_bits))
+    );
+}
+
 /// Opened at the default angle, the tree's attraction is within 5e-5 of the exact sum's at
 /// every facet, on a sphere, a triaxial ellipsoid and a body with a deep waist (5,120
 /// facets each). The first term the expansion leaves out is of the size `OPENING^6 = 4e-3`
