@@ -32,7 +32,7 @@ pub enum GravityChoice {
     /// the facets).
     Exact,
     /// The facets near each facet in closed form, groups of facets farther away by their
-    /// moments (time grows as F log F; the attraction within 3e-5 of the exact sum's
+    /// moments (time grows as F log F; the attraction within 3.1e-5 of the exact sum's
     /// wherever measured).
     Tree,
 }

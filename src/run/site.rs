@@ -119,34 +119,19 @@ fn figures<'a>(args: &SiteSettings, volume_m3: f64) -> BodyFigures<'a> {
 /// terminal or not: "more than a few minutes".
 const GRAVITY_TOLD_S: f64 = 180.0;
 
-/// The estimate of the facets' gravity on `threads` threads, s, from the time of a few
-/// facets spread over the model (at most 16, for at most about 0.2 s), and how many.
-fn gravity_estimate(poly: &Polyhedron, axis: [f64; 3], omega: f64, threads: usize) -> (f64, usize) {
-    let n = poly.mesh().facet_geometry().len();
+/// The time of a whole of `n` parts on `threads` threads, s, estimated from the time of a
+/// few of them spread over it (at most 16, for at most about 0.2 s), and how many were
+/// timed: `part(k)` does part `k`.
+fn estimate(n: usize, threads: usize, part: impl Fn(usize)) -> (f64, usize) {
     let tried = n.min(16);
     let started = Instant::now();
     let mut k = 0;
     while k < tried && (k == 0 || started.elapsed().as_secs_f64() < 0.2) {
-        std::hint::black_box(facet_gravity(poly, k * n / tried, axis, omega));
+        part(k * n / tried);
         k += 1;
     }
-    let per_facet_s = started.elapsed().as_secs_f64() / k.max(1) as f64;
-    (per_facet_s * n as f64 / threads.max(1) as f64, k)
-}
-
-/// The estimate of the tree's sums on `threads` threads, s, from the time of a few of its
-/// leaves spread over the model (at most 16, for at most about 0.2 s), and how many.
-fn tree_estimate(tree: &FacetTree, threads: usize) -> (f64, usize) {
-    let n = tree.leaves();
-    let tried = n.min(16);
-    let started = Instant::now();
-    let mut k = 0;
-    while k < tried && (k == 0 || started.elapsed().as_secs_f64() < 0.2) {
-        std::hint::black_box(tree.leaf_sums(k * n / tried));
-        k += 1;
-    }
-    let per_leaf_s = started.elapsed().as_secs_f64() / k.max(1) as f64;
-    (per_leaf_s * n as f64 / threads.max(1) as f64, k)
+    let per_part_s = started.elapsed().as_secs_f64() / k.max(1) as f64;
+    (per_part_s * n as f64 / threads.max(1) as f64, k)
 }
 
 /// Says, before it starts, how long the facets' gravity will take where that is more than
@@ -164,7 +149,9 @@ fn tell_gravity_time(
     let plural = if threads == 1 { "" } else { "s" };
     let shape = args.shape.display();
     if let Some(tree) = tree {
-        let (estimate_s, measured) = tree_estimate(tree, threads);
+        let (estimate_s, measured) = estimate(tree.leaves(), threads, |k| {
+            std::hint::black_box(tree.leaf_sums(k));
+        });
         if estimate_s > GRAVITY_TOLD_S {
             warn(&format!(
                 "{shape}: the gravity of its {n} facets will take about {} on {threads} \
@@ -176,7 +163,9 @@ fn tell_gravity_time(
         }
         return;
     }
-    let (estimate_s, measured) = gravity_estimate(poly, axis, omega, threads);
+    let (estimate_s, measured) = estimate(n, threads, |f| {
+        std::hint::black_box(facet_gravity(poly, f, axis, omega));
+    });
     if estimate_s <= GRAVITY_TOLD_S {
         return;
     }
