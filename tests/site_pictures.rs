@@ -1,18 +1,15 @@
 //! The pictures of a landing-site map (issues 34 and 45): the map picture draws each facet
 //! at its longitude and latitude, in Mollweide's equal-area projection, as its true outline
 //! (a facet takes the share of the map that it takes of the sphere of directions), in the
-//! colour of its P(stable) and of its slope, crossing the seam without smearing; the 3D
-//! page holds every facet's numbers, fetches nothing, and in headless Chromium draws the
-//! body and names the facet under the pointer.
+//! colour of its P(stable) and of its slope, crossing the seam without smearing. The 3D
+//! page's tests are in `site_page`.
 //!
 //! The site is made up here: a UV sphere whose facets' numbers are functions of their
 //! latitude band (and, in the seam's column, of their longitude), so the colour of every
 //! place of the map is known. `TOUCHDOWN_SITE_PICTURES=DIR` copies the pictures into DIR.
 
-use crate::animate::chromium;
 use crate::common::TempDir;
 use std::path::Path;
-use std::process::Command;
 use touchdown::plot::site::{
     NO_SAMPLES, NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, mollweide, p_stable_colour,
     scale_colour, site_map,
@@ -21,12 +18,12 @@ use touchdown::site::{Body, FacetShare, Site, SiteFacet};
 use touchdown::view::site::site_page;
 
 /// Longitudes and latitude bands of the test sphere: 24 x 12, 15 deg each, 528 facets.
-const LONS: usize = 24;
-const BANDS: usize = 12;
+pub(crate) const LONS: usize = 24;
+pub(crate) const BANDS: usize = 12;
 /// The sphere's vertices sit at longitudes 7.5 + 15 k, so that a column of facets
 /// straddles the +-180 deg seam (vertices at 172.5 and -172.5 deg).
 const LON0: f64 = 7.5;
-const RADIUS_M: f64 = 200.0;
+pub(crate) const RADIUS_M: f64 = 200.0;
 
 /// P(stable) of a facet in the band around latitude `band_deg` (its middle) with its
 /// centroid at longitude `lon_deg`: no samples above 60 deg of latitude, a landing site
@@ -45,11 +42,11 @@ fn slope(band_deg: f64) -> f64 {
     band_deg.abs()
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [(1, 2), (2, 0), (0, 1)].map(|(i, j)| a[i] * b[j] - a[j] * b[i])
 }
 
@@ -75,7 +72,7 @@ fn colour_of(p: Option<f64>) -> [u8; 3] {
 
 /// A UV sphere of `lons` x `bands` facets (poles as vertices), its facets' numbers made up
 /// by `p_stable` and `slope`.
-fn sphere(lons: usize, bands: usize) -> Site {
+pub(crate) fn sphere(lons: usize, bands: usize) -> Site {
     let step = 180.0 / bands as f64;
     let dir = |lat: f64, lon: f64| {
         let (lat, lon) = (lat.to_radians(), lon.to_radians());
@@ -167,7 +164,7 @@ fn facet(i: usize, vertices: &[[f64; 3]], t: [u32; 3], band: f64) -> SiteFacet {
 }
 
 /// Copies `file` into `TOUCHDOWN_SITE_PICTURES`, if set, to be looked at.
-fn keep(file: &Path) {
+pub(crate) fn keep(file: &Path) {
     if let Ok(dir) = std::env::var("TOUCHDOWN_SITE_PICTURES") {
         std::fs::create_dir_all(&dir).unwrap();
         std::fs::copy(file, Path::new(&dir).join(file.file_name().unwrap())).unwrap();
@@ -463,117 +460,8 @@ fn each_facet_takes_its_share_of_the_map_near_the_poles_too() {
     }
 }
 
-/// The JSON of a page (the site as the page reads it).
-fn page_data(page: &str) -> serde_json::Value {
-    crate::common::page_json(page, "site-data")
-}
-
-/// The numbers of a column of the page's facets (NaN for null).
-fn column(data: &serde_json::Value, name: &str) -> Vec<f64> {
-    data["facets"][name]
-        .as_array()
-        .unwrap_or_else(|| panic!("no column {name}"))
-        .iter()
-        .map(|v| v.as_f64().unwrap_or(f64::NAN))
-        .collect()
-}
-
-/// Whether `page` (a number the page holds, rounded to `digits` significant digits) is
-/// `v`: within half a unit of its last digit (and a little for the decimal's binary
-/// reading), or both missing.
-fn rounded(page: f64, v: f64, digits: i32) -> bool {
-    if v.is_nan() {
-        return page.is_nan();
-    }
-    let unit = 10f64.powi(v.abs().log10().floor() as i32 + 1 - digits);
-    (page - v).abs() <= 0.5 * unit * (1.0 + 1e-9) || (v == 0.0 && page == 0.0)
-}
-
-#[test]
-fn the_page_holds_every_facet_s_numbers_and_fetches_nothing() {
-    let dir = TempDir::new("site-page");
-    let mut site = sphere(LONS, BANDS);
-    // A name that would end the page's script element unless escaped.
-    site.body.name = "sphere </script><b>\"x\"".into();
-    let path = dir.join("sphere.html");
-    site_page(&site, &path).expect("the page");
-    keep(&path);
-    assert_eq!(dir.entries(), vec!["sphere.html".to_string()], "one file");
-    let page = std::fs::read_to_string(&path).unwrap();
-    let never = [
-        "http://",
-        "https://",
-        "<script src",
-        "fetch(",
-        "XMLHttpRequest",
-        "import(",
-    ];
-    assert!(never.iter().all(|n| !page.contains(n)), "the page fetches");
-    let data = page_data(&page);
-    assert_eq!(data["body"]["name"], site.body.name.as_str());
-    let triangles: Vec<u32> = serde_json::from_value(data["triangles"].clone()).unwrap();
-    assert_eq!(triangles, site.body.triangles.concat());
-    let vertices: Vec<f64> = serde_json::from_value(data["vertices"].clone()).unwrap();
-    let exact = site.body.vertices.concat();
-    assert_eq!(vertices.len(), exact.len());
-    assert!(vertices.iter().zip(&exact).all(|(p, v)| rounded(*p, *v, 6)));
-    // Every facet's numbers, in the facets' order, rounded as the page's doc says.
-    let (ids, samples) = (column(&data, "facet"), column(&data, "samples"));
-    let [lat, lon, slope, g] =
-        ["latitude_deg", "longitude_deg", "slope_deg", "gravity_m_s2"].map(|k| column(&data, k));
-    let rough = column(&data, "roughness_deg");
-    let shares = ["stable", "tipped", "sliding", "bouncing"].map(|k| column(&data, k));
-    let (low, high) = (column(&data, "stable_low"), column(&data, "stable_high"));
-    let sites = column(&data, "safe");
-    assert_eq!(ids.len(), site.facets.len());
-    for (k, f) in site.facets.iter().enumerate() {
-        assert_eq!(ids[k], f64::from(f.facet));
-        // A landing site as the map decides it, on the unrounded interval.
-        assert_eq!(sites[k], f64::from(u8::from(f.safe())), "facet {k}");
-        assert_eq!(samples[k], f.samples as f64);
-        assert!(rounded(lat[k], f.latitude_deg, 4) && rounded(lon[k], f.longitude_deg, 4));
-        assert!(rounded(slope[k], f.slope_deg, 4) && rounded(g[k], f.gravity_m_s2, 4));
-        assert!(rounded(rough[k], f.roughness_deg, 4), "facet {k} roughness");
-        match f.shares {
-            Some(s) => {
-                for (o, column) in shares.iter().enumerate() {
-                    assert!(rounded(column[k], s[o].p, 4), "facet {k} share {o}");
-                }
-                assert!(rounded(low[k], s[0].low, 4) && rounded(high[k], s[0].high, 4));
-            }
-            None => assert!(shares.iter().chain([&low, &high]).all(|c| c[k].is_nan())),
-        }
-    }
-    let safe = data["body"]["safe_area_fraction"].as_f64().unwrap();
-    assert!(rounded(safe, site.safe_area_fraction(), 6));
-    let point = data["body"]["safe_area_fraction_point_estimate"]
-        .as_f64()
-        .unwrap();
-    assert!(rounded(point, site.safe_area_fraction_point_estimate(), 6));
-    // The scales are the map picture's.
-    let scale = |name: &str| -> Vec<[u8; 3]> {
-        let v = &data["scales"][name];
-        serde_json::from_value(v.clone())
-            .unwrap_or_else(|_| vec![serde_json::from_value(v.clone()).unwrap()])
-    };
-    assert_eq!(scale("p_stable"), P_STABLE_SCALE.to_vec());
-    assert_eq!(scale("slope"), SLOPE_SCALE.to_vec());
-    assert_eq!(
-        (scale("safe"), scale("none"), scale("no_samples")),
-        (vec![SAFE], vec![NO_SHARES], vec![NO_SAMPLES])
-    );
-    // Nothing to show: refused, nothing written.
-    let mut empty = site.clone();
-    empty.facets.clear();
-    empty.body.triangles.clear();
-    let nothing = dir.join("empty.html");
-    let e = site_page(&empty, &nothing).expect_err("no facets");
-    assert!(e.to_string().contains("no facets"), "{e}");
-    assert!(!nothing.exists());
-}
-
-/// A body of 12,192 facets (as many as the shipped Itokawa model): its map drawn, its page
-/// small. (Their speed is not a test's business: the site command's summary shows it.)
+/// A body of 12,192 facets (as many as the Itokawa model): its map drawn, its page small.
+/// (Their speed is not a test's business: the site command's summary shows it.)
 #[test]
 fn the_pictures_of_twelve_thousand_facets_are_drawn_and_the_page_is_small() {
     let (dir, site) = (TempDir::new("site-12k"), sphere(48, 128));
@@ -583,160 +471,6 @@ fn the_pictures_of_twelve_thousand_facets_are_drawn_and_the_page_is_small() {
     site_page(&site, &page).expect("the page");
     assert!(map.is_file());
     let bytes = std::fs::metadata(&page).unwrap().len();
-    // 1.28 MB, its numbers rounded (to 6 and 4 digits); 2.3 MB in full (the aim: < 3 MB).
-    assert!(bytes < 1_500_000, "{bytes} bytes");
-}
-
-/// Drives the page in headless Chromium with the helpers of tests/python/browser_view.py:
-/// no console errors, the body drawn, the pointer at the canvas's centre names a facet
-/// (printed as `hover: {"text": ..., "camera": ...}`), the slope's colouring redraws it.
-const BROWSER_CHECK: &str = r#"
-import base64, json, os, shutil, signal, sys, tempfile, time
-chromium, html, out_dir, helpers = sys.argv[1:5]
-sys.path.insert(0, helpers)
-import browser_view as bv
-
-def checks(page):
-    fails = []
-    def check(good, text):
-        print(("ok: " if good else "FAIL: ") + text, flush=True)
-        fails.extend([] if good else [text])
-    since = [page.call(f"{d}.enable") for d in ("Runtime", "Log", "Page")] and len(page.events)
-    page.call("Page.navigate", {"url": "file://" + os.path.abspath(html)})
-    page.wait_event("Page.loadEventFired", since, 15)
-    # The page sets touchdownSiteReady as it loads.
-    check(page.evaluate("window.touchdownSiteReady === true") is True, "page ready")
-    page.evaluate(bv.REPAINT, awaited=True)
-    st = page.evaluate(bv.CANVAS_STATS)
-    share = st["nonbg"] / max(1, st["w"] * st["h"])
-    check(share > 0.05 and st["distinct"] > 8, f"3D canvas drawn: {100 * share:.1f} % of "
-          f"{st['w']}x{st['h']} px differ from the background, {st['distinct']} colours")
-    box = page.evaluate(bv.BOX % "view3d")
-    x, y = box["x"] + box["w"] / 2, box["y"] + box["h"] / 2
-    page.call("Input.dispatchMouseEvent", {"type": "mouseMoved", "x": x, "y": y})
-    page.evaluate(bv.REPAINT, awaited=True)
-    hover = page.evaluate("window.touchdownHover || ''")
-    shown = page.evaluate("document.getElementById('hover').textContent")
-    check(bool(hover) and hover == shown, "the pointer at the centre names a facet")
-    print("hover: " + json.dumps({"text": hover, "camera": page.evaluate("window.touchdownCamera")}))
-    with open(os.path.join(out_dir, "page.png"), "wb") as f:
-        f.write(base64.b64decode(page.call("Page.captureScreenshot", {"format": "png"}, 15)["data"]))
-    r = page.evaluate("(() => { const r = document.querySelector('input[value=slope]')"
-                      ".getBoundingClientRect(); return {x: r.x + r.width / 2, y: r.y + r.height / 2}; })()")
-    for kind in ("mousePressed", "mouseReleased"):
-        page.call("Input.dispatchMouseEvent", dict(type=kind, x=r["x"], y=r["y"], button="left", clickCount=1))
-    time.sleep(0.2)
-    page.evaluate(bv.REPAINT, awaited=True)
-    check(page.evaluate(bv.CANVAS_STATS)["hash"] != st["hash"], "colouring by slope redraws the body")
-    check(not page.errors, "no console errors: " + " || ".join(page.errors[:10]))
-    return 1 if fails else 0
-
-def expired(*_): raise bv.Timeout("the check took over 50 s")
-signal.signal(signal.SIGALRM, expired)
-signal.alarm(50)
-profile, proc, ws, code = tempfile.mkdtemp(prefix="touchdown-site-"), None, None, 1
-try:
-    proc, url = bv.start_chromium(chromium, profile)
-    ws = bv.WebSocket(bv.open_page(url))
-    code = checks(bv.CDP(ws))
-except bv.StartError as e:
-    print(f"FAIL: Chromium cannot start: {e}", flush=True)
-    code = 3
-except (bv.Timeout, ConnectionError, OSError, RuntimeError, ValueError, KeyError) as e:
-    print(f"FAIL: {type(e).__name__}: {e}", flush=True)
-finally:
-    signal.alarm(0)
-    ws and ws.sock.close()
-    bv.stop_chromium(proc)
-    shutil.rmtree(profile, ignore_errors=True)
-sys.exit(code)
-"#;
-
-/// The facet of `site` that the ray from `from` along `dir` meets first (Moller and
-/// Trumbore's test), if any.
-fn facet_on_ray(site: &Site, from: [f64; 3], dir: [f64; 3]) -> Option<usize> {
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let mut best: Option<(f64, usize)> = None;
-    for (k, t) in site.body.triangles.iter().enumerate() {
-        let [a, b, c] = t.map(|i| site.body.vertices[i as usize]);
-        let (e1, e2) = (sub(b, a), sub(c, a));
-        let p = cross(dir, e2);
-        let det = dot(e1, p);
-        if det.abs() < 1e-12 {
-            continue;
-        }
-        let s = sub(from, a);
-        let u = dot(s, p) / det;
-        let q = cross(s, e1);
-        let v = dot(dir, q) / det;
-        let t = dot(e2, q) / det;
-        if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && best.is_none_or(|b| t < b.0) {
-            best = Some((t, k));
-        }
-    }
-    best.map(|b| b.1)
-}
-
-#[test]
-fn the_page_draws_the_body_in_a_browser_and_names_the_facet_under_the_pointer() {
-    let Some(browser) =
-        chromium("the_page_draws_the_body_in_a_browser_and_names_the_facet_under_the_pointer")
-    else {
-        return;
-    };
-    let dir = TempDir::new("site-browser");
-    let site = sphere(LONS, BANDS);
-    let page = dir.join("sphere.html");
-    site_page(&site, &page).expect("the page");
-    let script = dir.write("check.py", BROWSER_CHECK);
-    let helpers = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python");
-    let mut check = Command::new("python3");
-    check
-        .arg(&script)
-        .arg(&browser)
-        .arg(&page)
-        .arg(dir.path())
-        .arg(&helpers);
-    let o = check.output().expect("run the browser check");
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    if o.status.code() == Some(3)
-        && std::env::var("TOUCHDOWN_REQUIRE_CHROMIUM").as_deref() != Ok("1")
-    {
-        eprintln!("SKIPPED the browser check: Chromium does not start:\n{stdout}");
-        return;
-    }
-    keep(&dir.join("page.png"));
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "{stdout}\n{stderr}");
-    let line = stdout
-        .lines()
-        .find_map(|l| l.strip_prefix("hover: "))
-        .expect("hover line");
-    let hover: serde_json::Value = serde_json::from_str(line).unwrap();
-    let text = hover["text"].as_str().unwrap();
-    let vec3 = |v: &serde_json::Value| -> [f64; 3] { serde_json::from_value(v.clone()).unwrap() };
-    let (centre, toward) = (
-        vec3(&hover["camera"]["centre"]),
-        vec3(&hover["camera"]["toViewer"]),
-    );
-    // The pointer at the canvas's centre is over the body's centre: the facet named is the
-    // one the line of sight through it meets first from the viewer's side (the camera's
-    // default puts that point 2.5 deg, some 13 pixels, from the facet's nearest edge).
-    let from = [0, 1, 2].map(|k| centre[k] + 10.0 * RADIUS_M * toward[k]);
-    let back = toward.map(|x| -x);
-    let k = facet_on_ray(&site, from, back).expect("the line of sight meets the body");
-    let f = &site.facets[k];
-    let p = f.p_stable().expect("a facet with shares faces the camera");
-    // To 4 significant digits, as the page writes them.
-    let round4 = |v: f64| format!("{}", format!("{v:.3e}").parse::<f64>().unwrap());
-    let [p, low, high] = [p.p, p.low, p.high].map(round4);
-    for expected in [
-        format!("facet {}\n", f.facet),
-        format!("slope {}°", f.slope_deg),
-        format!("roughness {}°", round4(f.roughness_deg)),
-        format!("P(stable) {p} [{low}, {high}]"),
-        format!("samples {}", f.samples),
-    ] {
-        assert!(text.contains(&expected), "{expected:?} not in {text:?}");
-    }
+    // 45 kB packed (`touchdown::view::packed`); 1.28 MB as rounded JSON before.
+    assert!(bytes < 100_000, "{bytes} bytes");
 }

@@ -43,6 +43,7 @@ mod sensitivity;
 mod shape;
 mod shards;
 mod site;
+mod site_page;
 mod site_pictures;
 mod step_contract;
 mod struts;

@@ -18,6 +18,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
 
+pub mod packed;
 pub mod site;
 
 /// The page, with `PLACEHOLDER` where the trace goes.

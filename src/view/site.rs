@@ -1,18 +1,22 @@
-//! The 3D page of `touchdown site`: one self-contained HTML page of the body, drawn on a
-//! canvas by its own painter's-algorithm renderer (orbit by dragging, zoom by the wheel),
-//! coloured by P(stable), the slope or the gravity on the scales of the map picture
-//! (`crate::plot::site`), with a facet's numbers under the pointer.
+//! The 3D page of `touchdown site`: one self-contained HTML page of the body, drawn with
+//! WebGL 2 (every facet, a depth buffer; orbit by dragging, zoom by the wheel), coloured by
+//! P(stable), the slope or the gravity on the scales of the map picture
+//! (`crate::plot::site`), with the numbers of the facet under the pointer (found by drawing
+//! each facet's number into a picture of its own and reading the pixel there).
 //!
-//! The page is `site.html` with the site spliced in as JSON: nothing is fetched, so it opens
-//! from a mail attachment or a folder with no network. The numbers are rounded to what the
-//! page shows or draws (6 significant digits for coordinates, 4 for shares, slopes,
-//! roughness and gravity), which keeps the page of a 12,000-facet body near 1.4 MB.
+//! The page is `site.html` with the site spliced in: a JSON header (the body, the scales)
+//! and the vertices, triangles and facets' numbers packed (`super::packed`: quantized to
+//! the steps below, differenced, deflated, base64). Nothing is fetched, so it opens from a
+//! mail attachment or a folder with no network. A body of 1.3 million facets makes a page
+//! of about 13.5 MB that Chromium opens and draws in about 4 s; one of 12,000 facets, 45 kB.
 
+use super::packed::{MISSING, Packed, Scale};
 use super::text;
 use crate::output::{AtomicFile, cannot_write};
 use crate::plot::site::{NO_SAMPLES, NO_SHARES, P_STABLE_SCALE, SAFE, SLOPE_SCALE, SLOPE_TOP_DEG};
-use crate::site::{SAFE_P_STABLE, SLOPE_LIMIT_DEG, Site, SiteFacet};
+use crate::site::{SAFE_P_STABLE, SLOPE_LIMIT_DEG, Site};
 use anyhow::bail;
+use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
@@ -21,7 +25,7 @@ use std::path::Path;
 const TEMPLATE: &str = include_str!("site.html");
 const PLACEHOLDER: &str = "\"__TOUCHDOWN_SITE_JSON__\"";
 
-/// Significant digits of the page's coordinates, and of its other numbers.
+/// Significant digits of the body's numbers in the header (mass, area, ...), and of the scales'.
 const COORDINATE_DIGITS: usize = 6;
 const DIGITS: usize = 4;
 
@@ -41,7 +45,7 @@ pub fn site_page(site: &Site, path: &Path) -> anyhow::Result<()> {
             b.triangles.len()
         );
     }
-    let json = site_json(site);
+    let json = site_json(site)?;
     // `</` would end the script element that holds the JSON; `<\/` reads the same in JSON.
     let page = TEMPLATE.replacen(PLACEHOLDER, &json.replace("</", "<\\/"), 1);
     let (file, mut sink) = AtomicFile::create(path)?;
@@ -54,9 +58,23 @@ pub fn site_page(site: &Site, path: &Path) -> anyhow::Result<()> {
 /// The site as the page reads it: the body and its numbers, the colour scales, the
 /// vertices and triangles (flat), and each facet's numbers as columns (`null` where a
 /// number is missing or not finite).
-fn site_json(site: &Site) -> String {
+/// Vertex coordinates are kept to this share of the body's largest extent (16 bits): 9 mm
+/// on a body 600 m across, far below a pixel of any view of it.
+const COORDINATE_STEPS: f64 = 65_535.0;
+/// Latitude and longitude are kept to 0.01 deg, slope and roughness to 0.001 deg, the
+/// gravity to a relative 1.06e-5 (a step of 2^-16 in its log2), the shares to 1e-6.
+const LAT_LON_STEP_DEG: f64 = 0.01;
+const ANGLE_STEP_DEG: f64 = 0.001;
+const GRAVITY_LOG2_STEP: f64 = 1.0 / 65_536.0;
+const SHARE_STEP: f64 = 1e-6;
+
+/// The site as the page reads it: the body and its numbers, the colour scales, then the
+/// packed columns (`super::packed`): the vertices, the triangles and each facet's numbers,
+/// and the table of the windows whose shares the facets show (the facets of one window, of
+/// the same samples and shares, share a row).
+fn site_json(site: &Site) -> anyhow::Result<String> {
     let b = &site.body;
-    let mut o = String::with_capacity(128 * site.facets.len() + 1024);
+    let mut o = String::with_capacity(1024);
     o.push_str("{\"body\":{\"name\":");
     text(&mut o, &b.name);
     for (key, v) in [
@@ -87,72 +105,142 @@ fn site_json(site: &Site) -> String {
     let _ = write!(o, ",\"slope_limit_deg\":{SLOPE_LIMIT_DEG}");
     o.push_str(",\"slope_top_deg\":");
     num(&mut o, SLOPE_TOP_DEG, DIGITS);
-    o.push_str("},\"vertices\":");
-    list(
-        &mut o,
-        b.vertices.iter().flatten().copied(),
-        COORDINATE_DIGITS,
+    let (windows, window_of) = windows(site)?;
+    let _ = write!(
+        o,
+        "}},\"vertices\":{},\"facets\":{},\"windows\":{},",
+        b.vertices.len(),
+        site.facets.len(),
+        windows.len()
     );
-    o.push_str(",\"triangles\":[");
-    for (k, i) in b.triangles.iter().flatten().enumerate() {
-        if k > 0 {
-            o.push(',');
+    let mut p = Packed::default();
+    // The vertices, each coordinate from the bounding box's low corner.
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for v in &b.vertices {
+        for a in 0..3 {
+            lo[a] = lo[a].min(v[a]);
+            hi[a] = hi[a].max(v[a]);
         }
-        let _ = write!(o, "{i}");
     }
-    o.push_str("],\"facets\":");
-    facets(&mut o, &site.facets);
+    let extent = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
+    if !extent.is_finite() {
+        bail!(
+            "the landing-site page of {}: a vertex is not finite",
+            b.name
+        );
+    }
+    let step = if extent > 0.0 {
+        extent / COORDINATE_STEPS
+    } else {
+        1.0
+    };
+    for (a, name) in ["x", "y", "z"].into_iter().enumerate() {
+        let scale = Scale::Linear {
+            offset: lo[a],
+            scale: step,
+        };
+        p.numbers(name, scale, b.vertices.iter().map(|v| v[a]));
+    }
+    // Vertex numbers as 32-bit integers: a mesh of 2^31 vertices is far beyond memory.
+    let one = Scale::Linear {
+        offset: 0.0,
+        scale: 1.0,
+    };
+    let corners = b.triangles.iter().flatten().map(|&i| i as i32);
+    p.column("triangles", one, corners.collect::<Vec<_>>().into_iter());
+    let fs = &site.facets;
+    // The facets' own numbers, unless they are 0, 1, 2, ... (as every map's are).
+    if fs.iter().enumerate().any(|(k, f)| f.facet as usize != k) {
+        p.column("facet", one, fs.iter().map(|f| f.facet as i32));
+    }
+    let lat_lon = Scale::Linear {
+        offset: 0.0,
+        scale: LAT_LON_STEP_DEG,
+    };
+    let angle = Scale::Linear {
+        offset: 0.0,
+        scale: ANGLE_STEP_DEG,
+    };
+    let gravity = Scale::Log2 {
+        scale: GRAVITY_LOG2_STEP,
+    };
+    p.numbers("latitude_deg", lat_lon, fs.iter().map(|f| f.latitude_deg));
+    p.numbers("longitude_deg", lat_lon, fs.iter().map(|f| f.longitude_deg));
+    p.numbers("slope_deg", angle, fs.iter().map(|f| f.slope_deg));
+    p.numbers("roughness_deg", angle, fs.iter().map(|f| f.roughness_deg));
+    p.numbers("gravity_m_s2", gravity, fs.iter().map(|f| f.gravity_m_s2));
+    p.column("window", one, window_of.into_iter());
+    // The windows' table: samples, whether a landing site (decided on the unrounded
+    // interval), then the shares.
+    p.column("samples", one, windows.iter().map(|w| w.samples));
+    p.column("safe", one, windows.iter().map(|w| i32::from(w.safe)));
+    let share = Scale::Linear {
+        offset: 0.0,
+        scale: SHARE_STEP,
+    };
+    for (k, name) in SHARE_COLUMNS.into_iter().enumerate() {
+        p.column(name, share, windows.iter().map(|w| w.shares[k]));
+    }
+    o.push_str(&p.finish());
     o.push('}');
-    o
+    Ok(o)
 }
 
-/// A number of a facet, a column of the page.
-type Column = fn(&SiteFacet) -> f64;
+/// The shares of a window's row, in this order.
+const SHARE_COLUMNS: [&str; 6] = [
+    "stable",
+    "stable_low",
+    "stable_high",
+    "tipped",
+    "sliding",
+    "bouncing",
+];
 
-/// The facets' numbers, a column each (in the order of `SHARE_OUTCOMES` for the shares).
-fn facets(o: &mut String, facets: &[SiteFacet]) {
-    o.push_str("{\"facet\":[");
-    for (k, f) in facets.iter().enumerate() {
-        if k > 0 {
-            o.push(',');
-        }
-        let _ = write!(o, "{}", f.facet);
+/// A row of the windows' table: what the facets of one window show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+struct WindowRow {
+    samples: i32,
+    safe: bool,
+    /// The shares of `SHARE_COLUMNS` on the page's scale (`MISSING` where none).
+    shares: [i32; 6],
+}
+
+/// The windows' table, in the order of the facets that first show each row, and each
+/// facet's row.
+fn windows(site: &Site) -> anyhow::Result<(Vec<WindowRow>, Vec<i32>)> {
+    let share = Scale::Linear {
+        offset: 0.0,
+        scale: SHARE_STEP,
+    };
+    let mut rows = Vec::new();
+    let mut index = HashMap::new();
+    let mut of = Vec::with_capacity(site.facets.len());
+    for f in &site.facets {
+        let Ok(samples) = i32::try_from(f.samples) else {
+            bail!(
+                "the landing-site page of {}: a facet's window holds {} samples, more than \
+                 the page keeps (2^31)",
+                site.body.name,
+                f.samples
+            );
+        };
+        let shares = f.shares.map_or([MISSING; 6], |s| {
+            [s[0].p, s[0].low, s[0].high, s[1].p, s[2].p, s[3].p].map(|v| share.quantize(v))
+        });
+        let row = WindowRow {
+            samples,
+            safe: f.safe(),
+            shares,
+        };
+        let k = *index.entry(row).or_insert_with(|| {
+            rows.push(row);
+            rows.len() - 1
+        });
+        // No more rows than facets, and the facets' count fits an i32 as the corners' do.
+        of.push(k as i32);
     }
-    o.push_str("],\"samples\":[");
-    for (k, f) in facets.iter().enumerate() {
-        if k > 0 {
-            o.push(',');
-        }
-        let _ = write!(o, "{}", f.samples);
-    }
-    // Whether each is a landing site, decided here on the unrounded interval.
-    o.push_str("],\"safe\":[");
-    for (k, f) in facets.iter().enumerate() {
-        if k > 0 {
-            o.push(',');
-        }
-        o.push(if f.safe() { '1' } else { '0' });
-    }
-    o.push(']');
-    // The numbers, then the shares: P(stable) with its interval, the other outcomes' P.
-    let columns: [(&str, Column); 11] = [
-        ("latitude_deg", |f| f.latitude_deg),
-        ("longitude_deg", |f| f.longitude_deg),
-        ("slope_deg", |f| f.slope_deg),
-        ("roughness_deg", |f| f.roughness_deg),
-        ("gravity_m_s2", |f| f.gravity_m_s2),
-        ("stable", |f| f.shares.map_or(f64::NAN, |s| s[0].p)),
-        ("stable_low", |f| f.shares.map_or(f64::NAN, |s| s[0].low)),
-        ("stable_high", |f| f.shares.map_or(f64::NAN, |s| s[0].high)),
-        ("tipped", |f| f.shares.map_or(f64::NAN, |s| s[1].p)),
-        ("sliding", |f| f.shares.map_or(f64::NAN, |s| s[2].p)),
-        ("bouncing", |f| f.shares.map_or(f64::NAN, |s| s[3].p)),
-    ];
-    for (name, value) in columns {
-        let _ = write!(o, ",\"{name}\":");
-        list(o, facets.iter().map(value), DIGITS);
-    }
-    o.push('}');
+    Ok((rows, of))
 }
 
 /// A number as JSON, rounded to `digits` significant digits; `null` when not finite.
@@ -172,18 +260,6 @@ fn num(o: &mut String, v: f64, digits: usize) {
     } else {
         let _ = write!(o, "{rounded}");
     }
-}
-
-/// Numbers as a JSON array.
-fn list(o: &mut String, values: impl Iterator<Item = f64>, digits: usize) {
-    o.push('[');
-    for (k, v) in values.enumerate() {
-        if k > 0 {
-            o.push(',');
-        }
-        num(o, v, digits);
-    }
-    o.push(']');
 }
 
 /// Colours as a JSON array of [r, g, b] arrays.

@@ -236,6 +236,13 @@ CANVAS_STATS = """(() => {
   return {w: c.width, h: c.height, nonbg: px.length - most, distinct: counts.size, hash: h,
           bg: [bg & 255, (bg >> 8) & 255, (bg >> 16) & 255]};  // RGBA bytes, little-endian
 })()"""
+# The same of a WebGL canvas (drawn with preserveDrawingBuffer): copied into a 2D canvas.
+_PIXELS_2D = "const px = new Uint32Array(c.getContext('2d').getImageData(0, 0, c.width, c.height).data.buffer);"
+assert _PIXELS_2D in CANVAS_STATS
+WEBGL_CANVAS_STATS = CANVAS_STATS.replace(_PIXELS_2D, (
+    "const t = document.createElement('canvas'); t.width = c.width; t.height = c.height;\n"
+    "  const g = t.getContext('2d'); g.drawImage(c, 0, 0);\n"
+    "  const px = new Uint32Array(g.getImageData(0, 0, t.width, t.height).data.buffer);"))
 REPAINT = "new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => r(true))))"
 CURSOR = """(() => { const s = document.getElementById('time');
   return [s.value, window.touchdownCursorTime, s.max]; })()"""
