@@ -8,7 +8,7 @@ use crate::shape::icosphere;
 use touchdown::shape::{Mesh, roughness_deg};
 
 /// The mesh as OBJ text, in metres.
-fn obj(mesh: &Mesh) -> String {
+pub(crate) fn obj(mesh: &Mesh) -> String {
     let mut s = String::from("# a test body\n");
     for v in &mesh.vertices {
         s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
@@ -35,12 +35,12 @@ fn column_names(path: &std::path::Path) -> Vec<String> {
 /// default scenario's), spinning in 3.3 h: `w^2 R` is half its gravity, so the effective
 /// gravity falls from `g` at the poles to `g / 2` at the equator and slopes reach 19.5 deg
 /// at 45 deg of latitude.
-const RADIUS_M: f64 = 30_000.0;
+pub(crate) const RADIUS_M: f64 = 30_000.0;
 const DENSITY: f64 = 2000.0;
-const PERIOD_H: f64 = 3.3;
+pub(crate) const PERIOD_H: f64 = 3.3;
 
 /// A lander gentler than the default's, so that P(stable) spans 0.2-0.9 on the sphere.
-const GENTLE: &str = "[inputs]\nrelease_height_m = { dist = \"uniform\", min = 0.5, max = 2.0 }\n\
+pub(crate) const GENTLE: &str = "[inputs]\nrelease_height_m = { dist = \"uniform\", min = 0.5, max = 2.0 }\n\
     rate_x_deg_s = { dist = \"normal\", mean = 0.0, sd = 0.2 }\n\
     rate_y_deg_s = { dist = \"normal\", mean = 0.0, sd = 0.2 }\n\
     rate_z_deg_s = { dist = \"normal\", mean = 0.0, sd = 0.2 }\n\
@@ -510,7 +510,7 @@ fn a_map_without_a_landing_site_says_none() {
 }
 
 /// The `samples` column of a facets' table.
-fn samples_of(path: &std::path::Path) -> Vec<u64> {
+pub(crate) fn samples_of(path: &std::path::Path) -> Vec<u64> {
     let file = std::fs::File::open(path).expect("open the table");
     let reader = arrow_ipc::reader::FileReader::try_new(file, None).expect("an Arrow file");
     let mut out = Vec::new();

@@ -45,6 +45,7 @@ mod shards;
 mod site;
 mod site_page;
 mod site_pictures;
+mod site_samples;
 mod step_contract;
 mod struts;
 mod study;

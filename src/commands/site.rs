@@ -67,6 +67,11 @@ pub struct SiteArgs {
     /// Samples of the sweep (accepts 1e6).
     #[arg(long, value_name = "N", default_value = "1e6", value_parser = parse_count)]
     pub samples: u64,
+    /// In place of --samples: as many samples as make the window of every facet a lander
+    /// could stand on expect at least N (the least-served window sets them: at slope 0,
+    /// where the window is cut in half, and at the smallest gravity); site.md says which.
+    #[arg(long, value_name = "N", value_parser = parse_count, conflicts_with = "samples")]
+    pub window_samples: Option<u64>,
     /// Seed of the sweep (overrides the scenario's `seed`).
     #[arg(long, value_name = "S", value_parser = parse_seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
@@ -165,6 +170,9 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
     if args.samples == 0 {
         anyhow::bail!("--samples must be at least 1: a map's facets count the sweep's samples");
     }
+    if args.window_samples == Some(0) {
+        anyhow::bail!("--window-samples must be at least 1: the windows' least samples");
+    }
     let window = Window {
         slope_deg: args.slope_window,
         gravity_fraction: args.gravity_window,
@@ -180,6 +188,7 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         spin_axis: args.spin_axis,
         scenario: args.scenario.clone(),
         samples: args.samples,
+        window_samples: args.window_samples,
         seed: args.seed,
         shard: args.shard,
         window,
@@ -231,7 +240,7 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
             window,
             sweep_file: &sweep_name,
             sweep_text: &run.sweep_text,
-            samples: args.samples,
+            samples: run.samples,
             gravity: &gravity_text(run.gravity_sum),
         },
     )?;
@@ -245,13 +254,17 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         &run.site,
         &crate::site::summary::Sweep {
             scenario: &scenario,
-            samples: args.samples,
+            samples: run.samples,
             slope_range_deg: run.slope_range_deg,
             gravity_range_m_s2: run.gravity_range_m_s2,
             window,
             tally: run.tally,
             t_max_s: run.t_max_s,
             warnings: run.warnings.clone(),
+            least_window: run
+                .least_window
+                .map(|w| (w.facet, w.slope_deg, w.gravity_m_s2, w.expected)),
+            window_samples: args.window_samples,
         },
     );
     crate::output::write_text(&md, &text)?;

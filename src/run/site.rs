@@ -40,8 +40,11 @@ pub struct SiteSettings {
     pub spin_axis: [f64; 3],
     /// Scenario file of the lander; the default scenario without it.
     pub scenario: Option<PathBuf>,
-    /// Samples of the sweep.
+    /// Samples of the sweep (set from the body where `window_samples` is given).
     pub samples: u64,
+    /// The samples the least-served window of a facet a lander could stand on must expect:
+    /// the sweep's `samples` are then set from the body so that it does.
+    pub window_samples: Option<u64>,
     /// Overrides the scenario's seed.
     pub seed: Option<u64>,
     /// The slice of the sweep to run, and no map (`--shard K/N`).
@@ -87,8 +90,94 @@ pub struct SiteRun {
     pub gravity_s: f64,
     /// How it was summed.
     pub gravity_sum: GravitySum,
+    /// The samples of the sweep (`SiteSettings::samples`, or as `window_samples` set them).
+    pub samples: u64,
+    /// The window of a facet a lander could stand on that expects the fewest samples (none
+    /// where no facet is flat enough).
+    pub least_window: Option<LeastWindow>,
     /// The folder, locked until the map is written.
     pub lock: FolderLock,
+}
+
+/// The window of a facet a lander could stand on that expects the fewest of the sweep's
+/// samples (slopes and gravities are drawn uniformly, so windows at slope 0, cut in half,
+/// and at the smallest gravity, narrowest, expect the fewest).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LeastWindow {
+    /// The facet's number.
+    pub facet: u32,
+    /// Its slope, deg, and gravity, m/s^2.
+    pub slope_deg: f64,
+    /// See `slope_deg`.
+    pub gravity_m_s2: f64,
+    /// The samples its window expects of the sweep's.
+    pub expected: f64,
+}
+
+/// The most samples `--window-samples` may set: beyond, the sweep would run for days on
+/// any machine (the default map's 1e6 takes minutes).
+const MOST_SIZED_SAMPLES: f64 = 1e10;
+
+/// The window that expects the fewest of `samples` among the facets a lander could stand
+/// on; `None` where there is no such facet.
+fn least_window(
+    args: &SiteSettings,
+    gravity: &[FacetGravity],
+    slopes: (f64, f64),
+    gravities: (f64, f64),
+    samples: u64,
+) -> Option<LeastWindow> {
+    gravity
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| f.slope_deg < SLOPE_LIMIT_DEG)
+        .map(|(i, f)| LeastWindow {
+            facet: i as u32,
+            slope_deg: f.slope_deg,
+            gravity_m_s2: f.effective_magnitude_m_s2,
+            expected: expected_samples(
+                samples,
+                slopes.1,
+                gravities,
+                args.window,
+                (f.slope_deg, f.effective_magnitude_m_s2),
+            ),
+        })
+        .min_by(|a, b| a.expected.total_cmp(&b.expected))
+}
+
+/// `args` with its samples set so that the least-served window expects `window_samples`
+/// (where given): `ceil(window_samples / share)`, the share of the sweep's samples that
+/// window expects.
+fn sized(
+    args: &SiteSettings,
+    gravity: &[FacetGravity],
+    slopes: (f64, f64),
+    gravities: (f64, f64),
+) -> anyhow::Result<SiteSettings> {
+    let Some(wanted) = args.window_samples else {
+        return Ok(args.clone());
+    };
+    let Some(least) = least_window(args, gravity, slopes, gravities, 1) else {
+        bail!("--window-samples {wanted}: no facet of this body is flat enough to stand on");
+    };
+    let needed = (wanted as f64 / least.expected).ceil();
+    if !needed.is_finite() || needed > MOST_SIZED_SAMPLES {
+        bail!(
+            "--window-samples {wanted}: the least-served window (facet {}, slope {:.2} deg, \
+             gravity {:.4e} m/s^2) holds {:.3e} of the sweep's samples, so the sweep would need \
+             {needed:.3e} samples, more than {MOST_SIZED_SAMPLES:e}: ask for fewer, or widen \
+             --slope-window or --gravity-window",
+            least.facet,
+            least.slope_deg,
+            least.gravity_m_s2,
+            least.expected
+        );
+    }
+    Ok(SiteSettings {
+        samples: (needed as u64).max(1),
+        ..args.clone()
+    })
 }
 
 /// Tells `text` on stderr as a warning (`workers::tell`: never a panic where stderr is gone).
@@ -660,7 +749,9 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
     let gravity_s = started.elapsed().as_secs_f64();
     let (slopes, gravities) = ranges(&gravity, args.window)?;
     check_grid(args, slopes, gravities)?;
+    let args = &sized(args, &gravity, slopes, gravities)?;
     check_samples(args, &gravity, slopes, gravities)?;
+    let least = least_window(args, &gravity, slopes, gravities, args.samples);
     let (text, scenario) = sweep_text(args, &base_text, slopes, gravities)?;
     std::fs::create_dir_all(dir)
         .map_err(|e| anyhow!("cannot make the map's folder {}: {e}", dir.display()))?;
@@ -732,6 +823,8 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
         warnings,
         gravity_s,
         gravity_sum,
+        samples: args.samples,
+        least_window: least,
         lock,
     })))
 }

@@ -23,6 +23,11 @@ pub struct Sweep<'a> {
     pub t_max_s: f64,
     /// The warnings on its samples (`super::warnings::sweep_failures`), written as notes.
     pub warnings: Vec<String>,
+    /// The window of a facet a lander could stand on that expects the fewest samples: its
+    /// facet, slope (deg), gravity (m/s^2) and the samples it expects.
+    pub least_window: Option<(u32, f64, f64, f64)>,
+    /// `--window-samples`, where it set the samples.
+    pub window_samples: Option<u64>,
 }
 
 /// The area-weighted quantile `q` of `values` (value, area): the smallest value with at
@@ -248,6 +253,19 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
         let _ = writeln!(
             s,
             "\nSamples per facet a lander could stand on: {lo} at least, {mid} median."
+        );
+    }
+    if let Some((facet, slope, gravity, expected)) = sweep.least_window {
+        let sized = sweep.window_samples.map_or(String::new(), |n| {
+            format!(
+                " (--window-samples {n}: the sweep's {} samples were set for it)",
+                sweep.samples
+            )
+        });
+        let _ = writeln!(
+            s,
+            "The least-served window expects {expected:.1} samples{sized}: facet {facet}, \
+             slope {slope:.2} deg, gravity {gravity:.4e} m/s^2."
         );
     }
     s
