@@ -37,7 +37,9 @@
 # merged; boundary (batch 200, 1000 per sector); trace of the default (also --every), of
 # hold-down and descent (thrusters), of drawn parameters, of a rough sweep's row; plot of
 # sweeps and traces; animate (160x120 GIFs); view; report --slope-distribution (rayleigh,
-# normal, exponential, a CSV of bins); five refusals (exit 2 and their message).
+# normal, exponential, a CSV of bins); a landing-site map of the Didymos model (2,000
+# samples: its sweep, facets table, site.md, map.png and site.html); five refusals (exit 2
+# and their message).
 #
 # Masked before comparing, and why (all else is compared as written):
 #   sweep's stdout  "wall time", "samples/s", "lander-steps/s": wall-clock measures;
@@ -52,6 +54,7 @@
 #     stdout
 #   animate's       "wrote F: X MB in T s": T
 #     stdout
+#   site's stdout   "... in T s" (the facets' gravity, the sweep): T
 # Not compared: stderr (logs/), the progress, the sweep's banner and summary with --out -,
 # warnings: no result goes there only, and its lines carry timings. Except the commands
 # that must be refused: their stderr is the error message alone, compared (cmd/NAME.stderr).
@@ -124,6 +127,8 @@ make_inputs() {
     local dir=$1
     mkdir -p "$dir/scenarios"
     cp "$repo"/scenarios/*.toml "$dir/scenarios/"
+    # The Didymos model, for a landing-site map.
+    cp "$repo"/bodies/didymos/didymos.obj "$dir/didymos.obj"
     # A table of our own (README "Your own inputs"): slopes, rolls and sample seeds set, the
     # rest drawn from the default scenario; `case` (text) and `weight` (numbers) pass
     # through with --keep-columns.
@@ -189,6 +194,7 @@ mask() {
             -e 's/^(shard .* done in )[0-9.]+ s;/\1<masked> s;/' ;;
         boundary) sed -E 's/(candidates drawn\) in )[0-9.]+ s\./\1<masked> s./' ;;
         animate) sed -E 's/^(wrote .*: [0-9.]+ MB in )[0-9.]+ s$/\1<masked> s/' ;;
+        site) sed -E 's/ in [0-9.]+ s([ ,;.]|$)/ in <masked> s\1/g' ;;
         *) echo "same-bytes: unknown mask $1" >&2; exit 2 ;;
     esac
 }
@@ -253,7 +259,7 @@ run_set() {
     # 0. Help texts, version and the default scenario (`touchdown scenario`).
     run none version --version
     run none help --help
-    for c in scenario sweep report sensitivity compare study boundary merge plot trace animate view; do
+    for c in scenario sweep report sensitivity compare study boundary merge plot trace animate view site; do
         run none "help-$c" "$c" --help
     done
     run none scenario scenario
@@ -387,6 +393,10 @@ run_set() {
     run none report-flat-rayleigh report sweeps/flat.arrow --slope-distribution rayleigh:10
     run none report-flat-normal report sweeps/flat.arrow --slope-distribution normal:30:8
     run none report-flat-bins report sweeps/flat.arrow --slope-distribution inputs/terrain-bins.csv
+
+    # A landing-site map (its five files) of the Didymos model.
+    run site site-didymos site inputs/didymos.obj --units km --density 2170 --spin-period 2.26 \
+        --samples 2000 "${t[@]}" --quiet --out-dir site-didymos
     run none report-flat-exponential report sweeps/flat.arrow --slope-distribution exponential:8
     run none report-default-rayleigh report default.arrow --slope-distribution rayleigh:10
 
