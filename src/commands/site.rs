@@ -261,9 +261,7 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
             tally: run.tally,
             t_max_s: run.t_max_s,
             warnings: run.warnings.clone(),
-            least_window: run
-                .least_window
-                .map(|w| (w.facet, w.slope_deg, w.gravity_m_s2, w.expected)),
+            least_window: run.least_window,
             window_samples: args.window_samples,
         },
     );

@@ -17,7 +17,7 @@ use crate::shape::{
     FacetGravity, FacetTree, GravitySum, Polyhedron, facet_gravity, read_shape, roughness_deg,
     tree_facets, unit_axis,
 };
-use crate::site::estimate::{Counts, Window, expected_samples, grid_bytes};
+use crate::site::estimate::{Counts, LeastWindow, Window, expected_samples, grid_bytes};
 use crate::site::warnings::{BodyFigures, implausible_body, sweep_failures};
 use crate::site::{Body, SLOPE_LIMIT_DEG, STEEP_START_DEG, Site, SiteFacet, SweepTally};
 use crate::sweep::Shard;
@@ -99,33 +99,18 @@ pub struct SiteRun {
     pub lock: FolderLock,
 }
 
-/// The window of a facet a lander could stand on that expects the fewest of the sweep's
-/// samples (slopes and gravities are drawn uniformly, so windows at slope 0, cut in half,
-/// and at the smallest gravity, narrowest, expect the fewest).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LeastWindow {
-    /// The facet's number.
-    pub facet: u32,
-    /// Its slope, deg, and gravity, m/s^2.
-    pub slope_deg: f64,
-    /// See `slope_deg`.
-    pub gravity_m_s2: f64,
-    /// The samples its window expects of the sweep's.
-    pub expected: f64,
-}
-
 /// The most samples `--window-samples` may set: beyond, the sweep would run for days on
 /// any machine (the default map's 1e6 takes minutes).
 const MOST_SIZED_SAMPLES: f64 = 1e10;
 
-/// The window that expects the fewest of `samples` among the facets a lander could stand
-/// on; `None` where there is no such facet.
+/// The window that expects the least share of the sweep's samples among the facets a
+/// lander could stand on (`expected` a share: of one sample); `None` where there is no such
+/// facet.
 fn least_window(
     args: &SiteSettings,
     gravity: &[FacetGravity],
     slopes: (f64, f64),
     gravities: (f64, f64),
-    samples: u64,
 ) -> Option<LeastWindow> {
     gravity
         .iter()
@@ -136,7 +121,7 @@ fn least_window(
             slope_deg: f.slope_deg,
             gravity_m_s2: f.effective_magnitude_m_s2,
             expected: expected_samples(
-                samples,
+                1,
                 slopes.1,
                 gravities,
                 args.window,
@@ -146,19 +131,13 @@ fn least_window(
         .min_by(|a, b| a.expected.total_cmp(&b.expected))
 }
 
-/// `args` with its samples set so that the least-served window expects `window_samples`
-/// (where given): `ceil(window_samples / share)`, the share of the sweep's samples that
-/// window expects.
-fn sized(
-    args: &SiteSettings,
-    gravity: &[FacetGravity],
-    slopes: (f64, f64),
-    gravities: (f64, f64),
-) -> anyhow::Result<SiteSettings> {
+/// `args` with its samples set so that the least-served window, `least` (its share of the
+/// samples), expects `window_samples` (where given): `ceil(window_samples / share)`.
+fn sized(args: &SiteSettings, least: Option<LeastWindow>) -> anyhow::Result<SiteSettings> {
     let Some(wanted) = args.window_samples else {
         return Ok(args.clone());
     };
-    let Some(least) = least_window(args, gravity, slopes, gravities, 1) else {
+    let Some(least) = least else {
         bail!("--window-samples {wanted}: no facet of this body is flat enough to stand on");
     };
     let needed = (wanted as f64 / least.expected).ceil();
@@ -749,9 +728,14 @@ pub fn run(args: &SiteSettings) -> anyhow::Result<Made> {
     let gravity_s = started.elapsed().as_secs_f64();
     let (slopes, gravities) = ranges(&gravity, args.window)?;
     check_grid(args, slopes, gravities)?;
-    let args = &sized(args, &gravity, slopes, gravities)?;
+    let least = least_window(args, &gravity, slopes, gravities);
+    let args = &sized(args, least)?;
     check_samples(args, &gravity, slopes, gravities)?;
-    let least = least_window(args, &gravity, slopes, gravities, args.samples);
+    // What the least-served window expects of the samples the sweep takes.
+    let least = least.map(|w| LeastWindow {
+        expected: w.expected * args.samples as f64,
+        ..w
+    });
     let (text, scenario) = sweep_text(args, &base_text, slopes, gravities)?;
     std::fs::create_dir_all(dir)
         .map_err(|e| anyhow!("cannot make the map's folder {}: {e}", dir.display()))?;

@@ -78,6 +78,21 @@ pub fn grid_bytes(slope_max_deg: f64, gravities: (f64, f64), window: Window) -> 
     (columns + 1.0) * (rows + 1.0) * (SHARE_OUTCOMES.len() + 1) as f64 * 8.0
 }
 
+/// The window of a facet a lander could stand on that expects the fewest of the sweep's
+/// samples (the sweep draws slopes and gravities uniformly, so windows at slope 0, cut in
+/// half, and at the smallest gravity, narrowest, expect the fewest).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LeastWindow {
+    /// The facet's number.
+    pub facet: u32,
+    /// Its slope, deg, and gravity, m/s^2.
+    pub slope_deg: f64,
+    /// See `slope_deg`.
+    pub gravity_m_s2: f64,
+    /// The samples its window expects of the sweep's.
+    pub expected: f64,
+}
+
 /// The samples a facet's window holds on average in a sweep of `samples` samples over these
 /// ranges (slopes drawn on `[0, slope_max_deg]`, gravities on `gravities`, uniformly): the
 /// sweep's samples times the share of its (slope, gravity) rectangle the window covers,

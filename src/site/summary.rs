@@ -1,7 +1,7 @@
 //! The Markdown summary of a landing-site map: the body (size, gravity, slopes,
 //! roughness) and how landings end over its surface, by area.
 
-use super::estimate::Window;
+use super::estimate::{LeastWindow, Window};
 use super::{SAFE_P_STABLE, SHARE_OUTCOMES, SLOPE_LIMIT_DEG, Site, SweepTally};
 use std::fmt::Write as _;
 
@@ -23,9 +23,8 @@ pub struct Sweep<'a> {
     pub t_max_s: f64,
     /// The warnings on its samples (`super::warnings::sweep_failures`), written as notes.
     pub warnings: Vec<String>,
-    /// The window of a facet a lander could stand on that expects the fewest samples: its
-    /// facet, slope (deg), gravity (m/s^2) and the samples it expects.
-    pub least_window: Option<(u32, f64, f64, f64)>,
+    /// The window of a facet a lander could stand on that expects the fewest samples.
+    pub least_window: Option<LeastWindow>,
     /// `--window-samples`, where it set the samples.
     pub window_samples: Option<u64>,
 }
@@ -255,7 +254,7 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
             "\nSamples per facet a lander could stand on: {lo} at least, {mid} median."
         );
     }
-    if let Some((facet, slope, gravity, expected)) = sweep.least_window {
+    if let Some(w) = sweep.least_window {
         let sized = sweep.window_samples.map_or(String::new(), |n| {
             format!(
                 " (--window-samples {n}: the sweep's {} samples were set for it)",
@@ -264,8 +263,9 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
         });
         let _ = writeln!(
             s,
-            "The least-served window expects {expected:.1} samples{sized}: facet {facet}, \
-             slope {slope:.2} deg, gravity {gravity:.4e} m/s^2."
+            "The least-served window expects {:.1} samples{sized}: facet {}, slope {:.2} deg, \
+             gravity {:.4e} m/s^2.",
+            w.expected, w.facet, w.slope_deg, w.gravity_m_s2
         );
     }
     s

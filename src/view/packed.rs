@@ -52,18 +52,6 @@ impl Scale {
             MISSING
         }
     }
-
-    /// The number integer `n` stands for (NaN for [`MISSING`]).
-    #[must_use]
-    pub fn value(self, n: i32) -> f64 {
-        if n == MISSING {
-            return f64::NAN;
-        }
-        match self {
-            Self::Linear { offset, scale } => offset + scale * f64::from(n),
-            Self::Log2 { scale } => (scale * f64::from(n)).exp2(),
-        }
-    }
 }
 
 /// Columns being packed, and the JSON list that names them.
@@ -114,22 +102,21 @@ impl Packed {
 
     /// The columns as JSON: `"columns":[{"name":..,"count":..,"scale":..,..},..],"data":"…"`
     /// (the planes deflated, in base64).
-    #[must_use]
-    pub fn finish(self) -> String {
+    ///
+    /// # Errors
+    /// The deflater's error, should it give one (into memory it does not).
+    pub fn finish(self) -> std::io::Result<String> {
         let mut z = ZlibEncoder::new(
             Vec::with_capacity(self.planes.len() / 3),
             Compression::best(),
         );
-        // Writing into memory cannot fail.
-        let deflated = z
-            .write_all(&self.planes)
-            .and_then(|()| z.finish())
-            .unwrap_or_default();
+        z.write_all(&self.planes)?;
+        let deflated = z.finish()?;
         let mut o = String::with_capacity(deflated.len() * 4 / 3 + self.names.len() + 64);
         let _ = write!(o, "\"columns\":[{}],\"data\":\"", self.names);
         base64(&mut o, &deflated);
         o.push('"');
-        o
+        Ok(o)
     }
 }
 
@@ -156,6 +143,16 @@ pub fn base64(o: &mut String, bytes: &[u8]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The number integer `n` stands for on `scale`, as the page reads it (NaN for
+    /// `MISSING`).
+    fn value(scale: Scale, n: i32) -> f64 {
+        match (n, scale) {
+            (MISSING, _) => f64::NAN,
+            (n, Scale::Linear { offset, scale }) => offset + scale * f64::from(n),
+            (n, Scale::Log2 { scale }) => (scale * f64::from(n)).exp2(),
+        }
+    }
 
     #[test]
     fn base64_is_rfc_4648() {
@@ -204,7 +201,7 @@ mod tests {
         };
         for v in [-2.0, -1.234_56, 0.0, 89.995, 1e6] {
             assert!(
-                (lin.value(lin.quantize(v)) - v).abs() <= 0.005 + 1e-12,
+                (value(lin, lin.quantize(v)) - v).abs() <= 0.005 + 1e-12,
                 "{v}"
             );
         }
@@ -212,7 +209,7 @@ mod tests {
             scale: 1.0 / 65536.0,
         };
         for v in [1e-9, 3.3e-5, 0.0168, 9.81, 1e20] {
-            let back = log.value(log.quantize(v));
+            let back = value(log, log.quantize(v));
             // Half a step of log2: a factor 2^(1/131072), 5.3e-6.
             assert!((back / v - 1.0).abs() <= 5.3e-6, "{v} {back}");
         }
@@ -222,6 +219,6 @@ mod tests {
         for v in [0.0, -1.0, f64::NAN] {
             assert_eq!(log.quantize(v), MISSING);
         }
-        assert!(lin.value(MISSING).is_nan() && log.value(MISSING).is_nan());
+        assert!(value(lin, MISSING).is_nan() && value(log, MISSING).is_nan());
     }
 }
