@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 
 pub use lock::FolderLock;
 pub use set::OutputSet;
-use target::{Target, target_of, unfinished};
+use target::{Target, create_unfinished, remove_unfinished_file, settle_unfinished, target_of};
 pub use target::{check_output_path, remove_unfinished};
 
 /// The engine and version that write a file, as stored in its schema metadata.
@@ -94,7 +94,6 @@ pub type Out = BufWriter<Sink>;
 /// `commit` leaves it there for the set to move into place with the others.
 pub struct AtomicFile {
     target: Target,
-    committed: bool,
     /// The lock on the temporary file of a regular output, released after it is renamed
     /// or removed (never before: the name could then be another run's file).
     lock: Option<File>,
@@ -110,7 +109,6 @@ impl AtomicFile {
         if let Some((path, partial, file)) = set::claim(path)? {
             let handle = AtomicFile {
                 target: Target::Regular { path, partial },
-                committed: false,
                 lock: None,
                 in_set: true,
             };
@@ -120,8 +118,7 @@ impl AtomicFile {
         let mut lock = None;
         let sink = match &target {
             Target::Regular { partial, .. } => {
-                let file = lock::create_locked(partial, path)?;
-                unfinished(partial, true);
+                let file = create_unfinished(partial, path)?;
                 lock = Some(file.try_clone().map_err(|e| {
                     anyhow::anyhow!("cannot write output file {}: {e}", partial.display())
                 })?);
@@ -137,7 +134,6 @@ impl AtomicFile {
         };
         let handle = AtomicFile {
             target,
-            committed: false,
             lock,
             in_set: false,
         };
@@ -206,7 +202,7 @@ impl AtomicFile {
         Ok(regular)
     }
 
-    fn finish(mut self, mut writer: Out, rename_to: Option<&Path>) -> anyhow::Result<()> {
+    fn finish(self, mut writer: Out, rename_to: Option<&Path>) -> anyhow::Result<()> {
         let partial = self.partial_path().to_path_buf();
         let context = |e: std::io::Error| cannot_write(&partial, e);
         writer.flush().map_err(context)?;
@@ -218,12 +214,11 @@ impl AtomicFile {
             if self.in_set {
                 set::written(partial);
             } else {
-                std::fs::rename(partial, path).map_err(|e| {
+                settle_unfinished(partial, || std::fs::rename(partial, path)).map_err(|e| {
                     anyhow::anyhow!("cannot move the finished file onto {}: {e}", path.display())
                 })?;
             }
         }
-        self.committed = true;
         Ok(())
     }
 }
@@ -235,10 +230,8 @@ impl Drop for AtomicFile {
             return;
         }
         if let Target::Regular { partial, .. } = &self.target {
-            if !self.committed {
-                let _ = std::fs::remove_file(partial);
-            }
-            unfinished(partial, false);
+            // Listed still unless it was renamed into place.
+            remove_unfinished_file(partial);
         }
         // Only now may another run take the name.
         self.lock.take();

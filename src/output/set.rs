@@ -11,8 +11,10 @@
 //! that reserves its files after its work (a map, a study: their folders are locked from
 //! the start) makes the same checks before it (`check`).
 
-use super::lock::create_locked;
-use super::target::{Target, check_output_path, target_of, unfinished};
+use super::target::{
+    Target, check_output_path, create_unfinished, remove_unfinished_file, settle_unfinished,
+    target_of,
+};
 use std::fs::File;
 use std::io::Seek;
 use std::path::{Path, PathBuf};
@@ -79,8 +81,7 @@ impl OutputSet {
         let mut set = OutputSet { paths: Vec::new() };
         for (partial, target, path) in regular {
             // On a refusal, `set` drops the reservations made so far.
-            let file = create_locked(&partial, &path)?;
-            unfinished(&partial, true);
+            let file = create_unfinished(&partial, &path)?;
             RESERVED
                 .lock()
                 .unwrap_or_else(PoisonError::into_inner)
@@ -107,12 +108,14 @@ impl OutputSet {
             let done = if failed.is_some() {
                 Ok(())
             } else if r.written {
-                std::fs::rename(&r.partial, &r.target).map_err(|e| {
-                    anyhow::anyhow!(
-                        "cannot move the finished file onto {}: {e}",
-                        r.target.display()
-                    )
-                })
+                settle_unfinished(&r.partial, || std::fs::rename(&r.partial, &r.target)).map_err(
+                    |e| {
+                        anyhow::anyhow!(
+                            "cannot move the finished file onto {}: {e}",
+                            r.target.display()
+                        )
+                    },
+                )
             } else {
                 remove_stale(&r.path)
             };
@@ -120,11 +123,9 @@ impl OutputSet {
                 failed = Some(e);
             }
         }
-        for r in &members {
-            // Left where a move failed (renamed ones are gone already).
-            let _ = std::fs::remove_file(&r.partial);
-            unfinished(&r.partial, false);
-        }
+        // Those not moved (a move failed, or a member not written); a moved one is off the
+        // list, and its name may already be another run's file.
+        remove_listed(&members);
         drop(members);
         failed.map_or(Ok(()), Err)
     }
@@ -132,10 +133,14 @@ impl OutputSet {
 
 impl Drop for OutputSet {
     fn drop(&mut self) {
-        for r in take(&self.paths) {
-            let _ = std::fs::remove_file(&r.partial);
-            unfinished(&r.partial, false);
-        }
+        remove_listed(&take(&self.paths));
+    }
+}
+
+/// Removes the temporary files of `members` still listed as being written.
+fn remove_listed(members: &[Reserved]) {
+    for r in members {
+        remove_unfinished_file(&r.partial);
     }
 }
 

@@ -4,7 +4,8 @@
 //! itself, none of the command's inputs, nor its temporary name one); and the temporary
 //! files being written, removed when a signal ends the process.
 
-use super::inputs;
+use super::{inputs, lock};
+use std::fs::File;
 use std::path::{Path, PathBuf};
 
 /// Where an output goes.
@@ -33,14 +34,45 @@ pub(super) enum Target {
 /// process (`remove_unfinished`).
 static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
 
-/// Adds (`true`) or takes away a temporary file from those being written.
-pub(super) fn unfinished(partial: &Path, add: bool) {
+/// Creates the temporary file `partial` of the output `out` (`lock::create_locked`) and
+/// lists it among those being written, both while holding the list: a signal that comes
+/// between the file's creation and its listing would otherwise end the process with the
+/// file left behind, and one that removed it first would remove another run's file.
+pub(super) fn create_unfinished(partial: &Path, out: &Path) -> anyhow::Result<File> {
     let mut files = UNFINISHED
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
-    if add {
-        files.push(partial.to_path_buf());
-    } else if let Some(i) = files.iter().position(|f| f == partial) {
+    let file = lock::create_locked(partial, out)?;
+    files.push(partial.to_path_buf());
+    Ok(file)
+}
+
+/// Runs `settle` (the temporary file `partial` renamed onto its output, or removed) and,
+/// where it succeeds, takes the file off the list of those being written, both while
+/// holding the list: a signal's removal then never meets the name after the file has gone,
+/// when it may already be another run's.
+pub(super) fn settle_unfinished(
+    partial: &Path,
+    settle: impl FnOnce() -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut files = UNFINISHED
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    settle()?;
+    if let Some(i) = files.iter().position(|f| f == partial) {
+        files.swap_remove(i);
+    }
+    Ok(())
+}
+
+/// Removes the temporary file `partial` if it is still listed as being written (neither
+/// renamed onto its output nor removed), and takes it off the list, holding the list.
+pub(super) fn remove_unfinished_file(partial: &Path) {
+    let mut files = UNFINISHED
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(i) = files.iter().position(|f| f == partial) {
+        let _ = std::fs::remove_file(partial);
         files.swap_remove(i);
     }
 }
