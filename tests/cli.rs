@@ -199,6 +199,16 @@ const BAD_INPUTS: &[BadInput] = &[
         &["`inputs.slope_deg`", "max = 90", "not including, 90 deg"],
     ),
     bad_scenario(
+        "log-uniform from 0",
+        "[surface]\nstiffness_n_per_m = { dist = \"log-uniform\", min = 0, max = 1e5 }\n",
+        &["`surface.stiffness_n_per_m`", "min = 0", "min above 0"],
+    ),
+    bad_scenario(
+        "log-uniform with min above max",
+        "[surface]\nstiffness_n_per_m = { dist = \"log-uniform\", min = 1e5, max = 1e4 }\n",
+        &["`surface.stiffness_n_per_m`", "min at most max"],
+    ),
+    bad_scenario(
         "uniform with min above max",
         "[inputs]\nroll_deg = { dist = \"uniform\", min = 5, max = 1 }\n",
         &["`inputs.roll_deg`", "min = 5", "min at most max"],

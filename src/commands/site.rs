@@ -10,7 +10,7 @@ use crate::output::format::Format;
 use crate::run::KernelChoice;
 use crate::run::site::{Made, SiteSettings};
 use crate::shape::{GravitySum, OPENING};
-use crate::site::estimate::Window;
+use crate::site::estimate::{GravityDraw, Window};
 use crate::sweep::Shard;
 use std::path::PathBuf;
 
@@ -82,6 +82,11 @@ pub struct SiteArgs {
     /// Half-width of a facet's window in gravity, as a fraction of its gravity.
     #[arg(long, value_name = "FRACTION", default_value = "0.05", value_parser = fraction)]
     pub gravity_window: f64,
+    /// How the sweep draws gravity over the body's range: uniformly, or uniformly in its
+    /// logarithm, which gives every facet's window the same share of the samples in gravity
+    /// (fewer samples for the same least-served window, --window-samples).
+    #[arg(long, value_enum, default_value = "uniform")]
+    pub gravity_draw: GravityDrawChoice,
     /// Folder of the map (made if missing): sweep.arrow, facets.arrow, site.md, map.png
     /// and site.html. Running the same command again keeps the sweep, or continues it
     /// where it was interrupted.
@@ -108,6 +113,24 @@ pub struct SiteArgs {
     /// up to 16,384 facets).
     #[arg(long, value_enum, default_value = "auto")]
     pub gravity: GravityChoice,
+}
+
+/// How the sweep draws gravity (`--gravity-draw`).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GravityDrawChoice {
+    /// Uniformly over the range.
+    Uniform,
+    /// Uniformly in the logarithm.
+    LogUniform,
+}
+
+impl From<GravityDrawChoice> for GravityDraw {
+    fn from(choice: GravityDrawChoice) -> GravityDraw {
+        match choice {
+            GravityDrawChoice::Uniform => GravityDraw::Uniform,
+            GravityDrawChoice::LogUniform => GravityDraw::LogUniform,
+        }
+    }
 }
 
 /// A finite number greater than 0.
@@ -192,6 +215,7 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
         seed: args.seed,
         shard: args.shard,
         window,
+        gravity_draw: args.gravity_draw.into(),
         out_dir: args.out_dir.clone(),
         format: args.format,
         threads: args.threads.threads,
@@ -257,6 +281,7 @@ pub fn run(args: &SiteArgs) -> anyhow::Result<()> {
             samples: run.samples,
             slope_range_deg: run.slope_range_deg,
             gravity_range_m_s2: run.gravity_range_m_s2,
+            gravity_draw: args.gravity_draw.into(),
             window,
             tally: run.tally,
             t_max_s: run.t_max_s,

@@ -17,7 +17,9 @@ use crate::shape::{
     FacetGravity, FacetTree, GravitySum, Polyhedron, facet_gravity, read_shape, roughness_deg,
     tree_facets, unit_axis,
 };
-use crate::site::estimate::{Counts, LeastWindow, Window, expected_samples, grid_bytes};
+use crate::site::estimate::{
+    Counts, GravityDraw, LeastWindow, Window, expected_samples, grid_bytes,
+};
 use crate::site::warnings::{BodyFigures, implausible_body, sweep_failures};
 use crate::site::{Body, SLOPE_LIMIT_DEG, STEEP_START_DEG, Site, SiteFacet, SweepTally};
 use crate::sweep::Shard;
@@ -51,6 +53,8 @@ pub struct SiteSettings {
     pub shard: Option<Shard>,
     /// The window a facet's shares count samples in.
     pub window: Window,
+    /// How the sweep draws gravity over the body's range (`--gravity-draw`).
+    pub gravity_draw: GravityDraw,
     /// The map's folder.
     pub out_dir: PathBuf,
     /// Format of the sweep and of the facets' table.
@@ -124,6 +128,7 @@ fn least_window(
                 1,
                 slopes.1,
                 gravities,
+                args.gravity_draw,
                 args.window,
                 (f.slope_deg, f.effective_magnitude_m_s2),
             ),
@@ -375,8 +380,8 @@ fn ranges(facets: &[FacetGravity], window: Window) -> anyhow::Result<((f64, f64)
     ))
 }
 
-/// The scenario text of the site's sweep: the lander's `base` with its slopes and gravity
-/// drawn uniformly over `slopes` and `gravities`.
+/// The scenario text of the site's sweep: the lander's `base` with its slopes drawn
+/// uniformly over `slopes` and its gravity over `gravities` as `args.gravity_draw` says.
 fn sweep_text(
     args: &SiteSettings,
     base: &str,
@@ -386,21 +391,25 @@ fn sweep_text(
     let mut table: toml::Table = base
         .parse()
         .map_err(|e| anyhow!("cannot read the scenario as TOML: {e}"))?;
-    let uniform = |(min, max): (f64, f64)| {
+    let drawn = |dist: &str, (min, max): (f64, f64)| {
         let mut t = toml::Table::new();
-        t.insert("dist".into(), "uniform".into());
+        t.insert("dist".into(), dist.into());
         t.insert("min".into(), min.into());
         t.insert("max".into(), max.into());
         toml::Value::Table(t)
     };
-    table.insert("gravity_m_s2".into(), uniform(gravities));
+    let gravity = match args.gravity_draw {
+        GravityDraw::Uniform => "uniform",
+        GravityDraw::LogUniform => "log-uniform",
+    };
+    table.insert("gravity_m_s2".into(), drawn(gravity, gravities));
     let inputs = table
         .entry("inputs")
         .or_insert_with(|| toml::Value::Table(toml::Table::new()));
     let Some(inputs) = inputs.as_table_mut() else {
         bail!("the scenario's `inputs` is not a table");
     };
-    inputs.insert("slope_deg".into(), uniform(slopes));
+    inputs.insert("slope_deg".into(), drawn("uniform", slopes));
     // The body by its file's name: the sweep depends on its ranges alone, so a map made
     // again from another folder keeps it.
     let text = format!(
@@ -438,8 +447,8 @@ fn names() -> Names {
             ),
             (
                 "gravity_m_s2",
-                "the gravities drawn, the facets' (summed as --gravity says) widened by \
-                 --gravity-window",
+                "the gravities drawn (as --gravity-draw says), the facets' (summed as --gravity \
+                 says) widened by --gravity-window",
             ),
         ],
     }
@@ -610,6 +619,7 @@ fn check_samples(
                 args.samples,
                 slopes.1,
                 gravities,
+                args.gravity_draw,
                 args.window,
                 (f.slope_deg, f.effective_magnitude_m_s2),
             )

@@ -485,13 +485,14 @@ pub(super) fn read_dist_at_least(
 /// Reads a number or a `{ dist = ..., ... }` table.
 fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, ScenarioError> {
     let allowed_forms = "a number, or { dist = \"fixed\", value = x }, { dist = \"uniform\", min = a, max = b }, \
+        { dist = \"log-uniform\", min = a, max = b } with a above 0, \
         { dist = \"normal\", mean = m, sd = s } with optional min and max to truncate it, \
         or { dist = \"grid\", min = a, max = b, count = n }";
     let dist = match v {
         Value::Float(_) | Value::Integer(_) => Dist::Fixed(r.number(key, v)?),
         Value::Table(t) => {
             let mut t = Reader::new(&r.key_path(key), t.clone());
-            let kinds = ["fixed", "uniform", "normal", "grid"].map(|k| (k, k));
+            let kinds = ["fixed", "uniform", "log-uniform", "normal", "grid"].map(|k| (k, k));
             let kind = t.given("dist", |t| t.word("dist", &kinds))?.unwrap_or("");
             let need = |t: &mut Reader, k: &'static str| -> Result<f64, ScenarioError> {
                 if !t.has(k) {
@@ -507,6 +508,16 @@ fn read_dist(r: &Reader, key: &str, v: &Value, range: &Range) -> Result<Dist, Sc
                         return Err(r.error(key, v, "min at most max"));
                     }
                     Dist::Uniform { min, max }
+                }
+                "log-uniform" => {
+                    let (min, max) = (need(&mut t, "min")?, need(&mut t, "max")?);
+                    if min.is_nan() || min <= 0.0 {
+                        return Err(r.error(key, v, "min above 0 (uniform in the logarithm)"));
+                    }
+                    if min > max {
+                        return Err(r.error(key, v, "min at most max"));
+                    }
+                    Dist::LogUniform { min, max }
                 }
                 "normal" => {
                     let mean = need(&mut t, "mean")?;

@@ -39,6 +39,17 @@ impl Default for Window {
     }
 }
 
+/// How the sweep draws gravity over its range (`--gravity-draw`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GravityDraw {
+    /// Uniformly: a facet's window (a fraction of its gravity wide) holds a share of the
+    /// samples that grows with its gravity, least at the smallest.
+    #[default]
+    Uniform,
+    /// Uniformly in the logarithm: every facet's window the same share in gravity.
+    LogUniform,
+}
+
 /// The sweep's samples counted on the grid: per outcome of `SHARE_OUTCOMES` and in all, a
 /// summed-area table.
 pub struct Counts {
@@ -79,8 +90,8 @@ pub fn grid_bytes(slope_max_deg: f64, gravities: (f64, f64), window: Window) -> 
 }
 
 /// The window of a facet a lander could stand on that expects the fewest of the sweep's
-/// samples (the sweep draws slopes and gravities uniformly, so windows at slope 0, cut in
-/// half, and at the smallest gravity, narrowest, expect the fewest).
+/// samples (windows at slope 0, cut in half, and with gravity drawn uniformly, at the
+/// smallest gravity, narrowest).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LeastWindow {
     /// The facet's number.
@@ -94,14 +105,15 @@ pub struct LeastWindow {
 }
 
 /// The samples a facet's window holds on average in a sweep of `samples` samples over these
-/// ranges (slopes drawn on `[0, slope_max_deg]`, gravities on `gravities`, uniformly): the
-/// sweep's samples times the share of its (slope, gravity) rectangle the window covers,
-/// clipped to the rectangle as the counts clip it.
+/// ranges (slopes drawn uniformly on `[0, slope_max_deg]`, gravities on `gravities` as
+/// `draw` says): the sweep's samples times the probability of its (slope, gravity)
+/// rectangle, clipped to the ranges as the counts clip it.
 #[must_use]
 pub fn expected_samples(
     samples: u64,
     slope_max_deg: f64,
     (gravity_min, gravity_max): (f64, f64),
+    draw: GravityDraw,
     window: Window,
     (slope_deg, gravity): (f64, f64),
 ) -> f64 {
@@ -113,8 +125,17 @@ pub fn expected_samples(
         slope_max_deg,
     ) / slope_max_deg;
     let half = gravity * window.gravity_fraction;
-    let g = covered(gravity - half, gravity + half, gravity_min, gravity_max)
-        / (gravity_max - gravity_min);
+    let (lo, hi) = (
+        (gravity - half).max(gravity_min),
+        (gravity + half).min(gravity_max),
+    );
+    let g = match draw {
+        GravityDraw::Uniform => {
+            covered(lo, hi, gravity_min, gravity_max) / (gravity_max - gravity_min)
+        }
+        GravityDraw::LogUniform if hi > lo => (hi / lo).ln() / (gravity_max / gravity_min).ln(),
+        GravityDraw::LogUniform => 0.0,
+    };
     samples as f64 * s * g
 }
 

@@ -1,7 +1,7 @@
 //! The Markdown summary of a landing-site map: the body (size, gravity, slopes,
 //! roughness) and how landings end over its surface, by area.
 
-use super::estimate::{LeastWindow, Window};
+use super::estimate::{GravityDraw, LeastWindow, Window};
 use super::{SAFE_P_STABLE, SHARE_OUTCOMES, SLOPE_LIMIT_DEG, Site, SweepTally};
 use std::fmt::Write as _;
 
@@ -15,6 +15,8 @@ pub struct Sweep<'a> {
     pub slope_range_deg: (f64, f64),
     /// See `slope_range_deg`.
     pub gravity_range_m_s2: (f64, f64),
+    /// How it drew the gravities over their range.
+    pub gravity_draw: GravityDraw,
     /// The window a facet's shares count samples in.
     pub window: Window,
     /// What its samples did beyond the shares (diverged, held, never touched).
@@ -124,7 +126,7 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
     let _ = writeln!(
         s,
         "\n## Landings\n\nThe lander of {}, {} samples over slopes {:.2}-{:.2} deg and \
-         gravities {:.4e}-{:.4e} m/s^2; each facet counts the samples within {} deg of its \
+         gravities {:.4e}-{:.4e} m/s^2{}; each facet counts the samples within {} deg of its \
          slope and {} % of its gravity.\n",
         sweep.scenario,
         sweep.samples,
@@ -132,6 +134,10 @@ pub fn markdown(site: &Site, sweep: &Sweep<'_>) -> String {
         sweep.slope_range_deg.1,
         sweep.gravity_range_m_s2.0,
         sweep.gravity_range_m_s2.1,
+        match sweep.gravity_draw {
+            GravityDraw::Uniform => "",
+            GravityDraw::LogUniform => " (uniformly in the logarithm)",
+        },
         sweep.window.slope_deg,
         100.0 * sweep.window.gravity_fraction
     );
