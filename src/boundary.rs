@@ -217,6 +217,7 @@ pub fn next_upper(allowable: Allowable, (min, max): (f64, f64), tolerance: f64) 
 fn conditioned(dist: Dist, upper: f64) -> Dist {
     match dist {
         Dist::Uniform { min, .. } => Dist::Uniform { min, max: upper },
+        Dist::LogUniform { min, .. } => Dist::LogUniform { min, max: upper },
         Dist::Normal { mean, sd, min, .. } => Dist::Normal {
             mean,
             sd,

@@ -521,17 +521,25 @@ fn signalled_as_it_starts(dir: &TempDir, args: &[&str], first: &str, outputs: &[
     for round in 0..rounds {
         let mut child = start(dir, args);
         let start = Instant::now();
-        while !dir.join(first).exists() && child.try_wait().unwrap().is_none() {
+        let mut ended = false;
+        while !dir.join(first).exists() {
+            ended = child.try_wait().unwrap().is_some();
+            if ended {
+                break;
+            }
             assert!(
                 start.elapsed() < Duration::from_secs(30),
                 "{first} never appeared"
             );
             std::hint::spin_loop();
         }
-        // Sent at once (not through `kill(1)`, whose start takes milliseconds).
-        let pid = i32::try_from(child.id()).unwrap();
-        // SAFETY: signals our own child, which has not been waited for.
-        unsafe { libc::kill(pid, libc::SIGTERM) };
+        if !ended {
+            // Sent at once (not through `kill(1)`, whose start takes milliseconds).
+            let pid = i32::try_from(child.id()).unwrap();
+            // SAFETY: signals our own child, not yet waited for (so not reaped: its pid
+            // is still its own).
+            unsafe { libc::kill(pid, libc::SIGTERM) };
+        }
         let out = child.wait_with_output().unwrap();
         for name in outputs {
             let partial = format!("{name}.partial");

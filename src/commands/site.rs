@@ -68,8 +68,9 @@ pub struct SiteArgs {
     #[arg(long, value_name = "N", default_value = "1e6", value_parser = parse_count)]
     pub samples: u64,
     /// In place of --samples: as many samples as make the window of every facet a lander
-    /// could stand on expect at least N (the least-served window sets them: at slope 0,
-    /// where the window is cut in half, and at the smallest gravity); site.md says which.
+    /// could stand on expect at least N (the least-served window sets them: where the window
+    /// is cut, at slope 0 or 89 deg, and with gravity drawn uniformly at the smallest
+    /// gravity); site.md says which.
     #[arg(long, value_name = "N", value_parser = parse_count, conflicts_with = "samples")]
     pub window_samples: Option<u64>,
     /// Seed of the sweep (overrides the scenario's `seed`).

@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 pub use lock::FolderLock;
 pub use set::OutputSet;
 use target::{Target, create_unfinished, remove_unfinished_file, settle_unfinished, target_of};
-pub use target::{check_output_path, remove_unfinished};
+pub use target::{check_output_path, remove_unfinished_then};
 
 /// The engine and version that write a file, as stored in its schema metadata.
 pub const ENGINE: &str = concat!("touchdown ", env!("CARGO_PKG_VERSION"));
@@ -120,6 +120,7 @@ impl AtomicFile {
             Target::Regular { partial, .. } => {
                 let file = create_unfinished(partial, path)?;
                 lock = Some(file.try_clone().map_err(|e| {
+                    remove_unfinished_file(partial);
                     anyhow::anyhow!("cannot write output file {}: {e}", partial.display())
                 })?);
                 Sink::File(file)

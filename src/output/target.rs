@@ -31,7 +31,7 @@ pub(super) enum Target {
 }
 
 /// The temporary files of the outputs being written, to remove when a signal ends the
-/// process (`remove_unfinished`).
+/// process (`remove_unfinished_then`).
 static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
 
 /// Creates the temporary file `partial` of the output `out` (`lock::create_locked`) and
@@ -77,16 +77,18 @@ pub(super) fn remove_unfinished_file(partial: &Path) {
     }
 }
 
-/// Removes the temporary files of every output being written (a signal ends the process):
-/// nothing unfinished is left behind. Returns how many there were.
-pub fn remove_unfinished() -> usize {
+/// Removes the temporary files of every output being written and hands their count to
+/// `end`, which ends the process (a signal came), still holding the list: no thread lists a new file,
+/// nor renames or removes one by its name, before the process has ended, so nothing
+/// unfinished is left behind and no other run's file under the same name is touched.
+pub fn remove_unfinished_then(end: impl FnOnce(usize) -> std::convert::Infallible) -> ! {
     let files = UNFINISHED
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
     for f in files.iter() {
         let _ = std::fs::remove_file(f);
     }
-    files.len()
+    match end(files.len()) {}
 }
 
 /// Where output `path` goes: standard output, a device or FIFO (followed through symbolic

@@ -21,7 +21,7 @@ static SIGNALLED: OnceLock<Arc<AtomicUsize>> = OnceLock::new();
 static STOPS_CLEANLY: AtomicBool = AtomicBool::new(false);
 
 /// Ends the process on SIGINT, SIGTERM or SIGHUP with exit code 128 + the signal, its
-/// unfinished output files removed (`output::remove_unfinished`), unless the command has
+/// unfinished output files removed (`output::remove_unfinished_then`), unless the command has
 /// asked to stop cleanly on them (`stop_on_signals`).
 pub fn end_on_signals() -> anyhow::Result<()> {
     watch().map(|_| ())
@@ -53,17 +53,18 @@ fn watch() -> anyhow::Result<Arc<AtomicUsize>> {
             for signal in signals.forever() {
                 let now = std::time::Instant::now();
                 if !STOPS_CLEANLY.load(Ordering::SeqCst) {
-                    let removed = crate::output::remove_unfinished();
-                    tell(&format!(
-                        "touchdown: interrupted by {}{}\n",
-                        signal_name(signal as usize),
-                        if removed > 0 {
-                            ": its unfinished output removed"
-                        } else {
-                            ""
-                        }
-                    ));
-                    std::process::exit(128 + signal);
+                    crate::output::remove_unfinished_then(|removed| {
+                        tell(&format!(
+                            "touchdown: interrupted by {}{}\n",
+                            signal_name(signal as usize),
+                            if removed > 0 {
+                                ": its unfinished output removed"
+                            } else {
+                                ""
+                            }
+                        ));
+                        std::process::exit(128 + signal)
+                    });
                 }
                 if first.is_none() {
                     first = Some(now);

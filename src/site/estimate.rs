@@ -3,11 +3,15 @@
 //! the fraction `gravity_fraction` of the facet's (a window centred on the facet's own
 //! slope and gravity), counted; their shares with Wilson's 95 % intervals.
 //!
-//! The sweep draws slope and gravity uniformly, so a window's samples are a uniform draw
-//! over the window and its share is P averaged over it: for a P smooth in the window, off
-//! the facet's own by `P_ss h_s^2 / 6 + P_gg h_g^2 / 6` (the second derivatives; the first
-//! cancel in a centred window), the first-order term `P_s h_s / 2` only where the window
-//! meets slope 0 and is cut there (docs/MODEL.md, "Landing sites").
+//! The sweep draws slope uniformly and gravity uniformly or uniformly in its logarithm
+//! (`GravityDraw`), so a window's samples are drawn over it with a density flat in slope and
+//! flat, or proportional to `1/g`, in gravity, and its share is P averaged over it with that
+//! density: for a P smooth in the window, off the facet's own by
+//! `P_ss h_s^2 / 6 + P_gg (g h_g)^2 / 6` (the second derivatives; the first cancel in a
+//! centred window where the density is flat), plus `-P_g g h_g^2 / 3` under the logarithmic
+//! draw (the window's mean gravity is `g (1 - h_g^2 / 3)` to second order), and the
+//! first-order term `P_s h_s / 2` only where the window is cut, at slope 0 or at the top of
+//! the slopes drawn (docs/MODEL.md, "Landing sites").
 //!
 //! Counting is done once on a fine grid of the (slope, gravity) plane, with a summed-area
 //! table per outcome, so a facet's window costs a constant time whatever the samples:
@@ -133,7 +137,9 @@ pub fn expected_samples(
         GravityDraw::Uniform => {
             covered(lo, hi, gravity_min, gravity_max) / (gravity_max - gravity_min)
         }
-        GravityDraw::LogUniform if hi > lo => (hi / lo).ln() / (gravity_max / gravity_min).ln(),
+        GravityDraw::LogUniform if hi > lo => {
+            (hi.ln() - lo.ln()) / (gravity_max.ln() - gravity_min.ln())
+        }
         GravityDraw::LogUniform => 0.0,
     };
     samples as f64 * s * g
@@ -141,8 +147,8 @@ pub fn expected_samples(
 
 impl Counts {
     /// Counts `samples` (slope, deg; gravity, m/s^2; outcome) of a sweep that drew slopes on
-    /// `[0, slope_max_deg]` and gravities on `[gravity_min, gravity_max]` uniformly, on a
-    /// grid for `window`, as they come (none is kept): it holds [`grid_bytes`] whatever
+    /// `[0, slope_max_deg]` and gravities on `[gravity_min, gravity_max]` (however drawn), on
+    /// a grid for `window`, as they come (none is kept): it holds [`grid_bytes`] whatever
     /// their number. Samples outside the ranges are not counted.
     #[must_use]
     pub fn new(
@@ -295,6 +301,51 @@ mod tests {
         let s = s.unwrap()[0];
         let (lo, hi) = wilson_interval((s.p * n as f64).round() as u64, n);
         assert!((s.low - lo).abs() < 1e-12 && (s.high - hi).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_window_expects_its_share_of_the_samples_under_either_draw() {
+        // Slopes on [0, 40] deg, gravities on [1, 8] (a factor of 8), windows of +-1 deg
+        // and +-5 %, 1e6 samples.
+        let w = Window {
+            slope_deg: 1.0,
+            gravity_fraction: 0.05,
+        };
+        let e = |draw, at| expected_samples(1_000_000, 40.0, (1.0, 8.0), draw, w, at);
+        let log_width = (1.05_f64 / 0.95).ln() / 8.0_f64.ln();
+        // Drawn uniformly: the window's area over the rectangle's, growing with the
+        // gravity; in the logarithm, the same for every whole window.
+        for g in [1.2, 2.0, 5.0, 7.5] {
+            let uniform = 1e6 * (2.0 / 40.0) * (0.1 * g / 7.0);
+            let log = 1e6 * (2.0 / 40.0) * log_width;
+            assert!((e(GravityDraw::Uniform, (20.0, g)) / uniform - 1.0).abs() < 1e-12);
+            assert!((e(GravityDraw::LogUniform, (20.0, g)) / log - 1.0).abs() < 1e-12);
+        }
+        // Clipped: at slope 0 half the window; at the ranges' ends in gravity only the part
+        // inside ([1, 1.05] of the window about 1, [7.6, 8] about 8).
+        let half = e(GravityDraw::LogUniform, (0.0, 4.0)) / e(GravityDraw::LogUniform, (20.0, 4.0));
+        assert!((half - 0.5).abs() < 1e-12);
+        let low = 1e6 * (2.0 / 40.0) * 1.05_f64.ln() / 8.0_f64.ln();
+        assert!((e(GravityDraw::LogUniform, (20.0, 1.0)) / low - 1.0).abs() < 1e-12);
+        let high = 1e6 * (2.0 / 40.0) * (8.0_f64 / 7.6).ln() / 8.0_f64.ln();
+        assert!((e(GravityDraw::LogUniform, (20.0, 8.0)) / high - 1.0).abs() < 1e-12);
+        let high_uniform = 1e6 * (2.0 / 40.0) * (0.4 / 7.0);
+        assert!((e(GravityDraw::Uniform, (20.0, 8.0)) / high_uniform - 1.0).abs() < 1e-12);
+        // Outside the ranges, nothing.
+        assert_eq!(e(GravityDraw::LogUniform, (20.0, 20.0)), 0.0);
+        assert_eq!(e(GravityDraw::Uniform, (20.0, 20.0)), 0.0);
+        // The least-served whole window of the uniform draw, at the smallest gravity whose
+        // window is whole (1 / 0.95): 0.31 of what the logarithmic draw gives it (and
+        // every other window), its width 0.1 / 0.95 over 7 against ln(1.05 / 0.95) / ln 8.
+        let least_uniform = e(GravityDraw::Uniform, (20.0, 1.0 / 0.95));
+        let least_log = e(GravityDraw::LogUniform, (20.0, 1.0 / 0.95));
+        let ratio = least_uniform / least_log;
+        let expected = (0.1 / 0.95 / 7.0) / log_width;
+        assert!(
+            (ratio / expected - 1.0).abs() < 1e-12,
+            "{ratio} against {expected}"
+        );
+        assert!(ratio < 0.35, "{ratio}");
     }
 
     #[test]
