@@ -195,9 +195,8 @@ pub fn quantile(dist: &Dist, u: f64, grid_index: u64) -> f64 {
     match *dist {
         Dist::Fixed(x) => x,
         Dist::Uniform { min, max } => min + (max - min) * u,
-        // libm's logarithm and exponential: the same bits on every CPU.
-        // In logarithms throughout: `max / min`, or `min` times a power, overflows for the
-        // widest ranges.
+        // In logarithms throughout (`max / min`, or `min` times a power, overflows for the
+        // widest ranges), libm's: the same bits on every CPU.
         Dist::LogUniform { min, max } => {
             let (a, b) = (libm::log(min), libm::log(max));
             libm::exp(a + u * (b - a)).clamp(min, max)

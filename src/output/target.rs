@@ -78,9 +78,9 @@ pub(super) fn remove_unfinished_file(partial: &Path) {
 }
 
 /// Removes the temporary files of every output being written and hands their count to
-/// `end`, which ends the process (a signal came), still holding the list: no thread lists a new file,
-/// nor renames or removes one by its name, before the process has ended, so nothing
-/// unfinished is left behind and no other run's file under the same name is touched.
+/// `end`, which ends the process (a signal came), still holding the list: no thread lists a
+/// new file, nor renames or removes one by its name, before the process has ended, so
+/// nothing unfinished is left behind and no other run's file under the same name is touched.
 pub fn remove_unfinished_then(end: impl FnOnce(usize) -> std::convert::Infallible) -> ! {
     let files = UNFINISHED
         .lock()

@@ -134,13 +134,9 @@ pub fn expected_samples(
         (gravity + half).min(gravity_max),
     );
     let g = match draw {
-        GravityDraw::Uniform => {
-            covered(lo, hi, gravity_min, gravity_max) / (gravity_max - gravity_min)
-        }
-        GravityDraw::LogUniform if hi > lo => {
-            (hi.ln() - lo.ln()) / (gravity_max.ln() - gravity_min.ln())
-        }
-        GravityDraw::LogUniform => 0.0,
+        _ if hi <= lo => 0.0,
+        GravityDraw::Uniform => (hi - lo) / (gravity_max - gravity_min),
+        GravityDraw::LogUniform => (hi.ln() - lo.ln()) / (gravity_max.ln() - gravity_min.ln()),
     };
     samples as f64 * s * g
 }
