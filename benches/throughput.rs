@@ -3,12 +3,12 @@
 //! (samples/s).
 //!
 //! The states are the first second of the first touchdowns of the default sweep (eight for
-//! f64 lanes, sixteen for f32, one lane value each): legs in and out of contact, the
-//! expensive part of a sample (free flight takes long steps). The reference steps the first
-//! eight.
+//! f64 lanes, sixteen for f32, in as many blocks as the kernel's width takes: one of
+//! AVX-512, two of AVX2): legs in and out of contact, the expensive part of a sample (free
+//! flight takes long steps). The reference steps the first eight.
 //!
 //! Every kernel this CPU runs, in both precisions: `step/kernel_f64x8_avx512`,
-//! `step/kernel_f32x16_avx512`, ...; sweeps in f64 and f32.
+//! `step/kernel_f32x16_avx512`, `step/kernel_f64x4_avx2`, ...; sweeps in f64 and f32.
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
 use kernels::block::Block;
@@ -42,31 +42,45 @@ fn kernel_vs_reference(c: &mut Criterion) {
         type Output = ();
         fn run<K: Kernel>(self) {
             let params = kernel_params::<K>(self.model);
-            let mut block = Block::new(&params);
-            for (i, s) in self.samples[..K::LANES].iter().enumerate() {
-                block.load(i, &lane_init(self.model, s));
-            }
+            // The same landers for every width of the precision.
+            let landers = match self.precision {
+                Precision::F64 => 8,
+                Precision::F32 => 16,
+            };
+            let blocks: Vec<_> = self.samples[..landers]
+                .chunks(K::LANES)
+                .map(|samples| {
+                    let mut block = Block::new(&params);
+                    for (i, s) in samples.iter().enumerate() {
+                        block.load(i, &lane_init(self.model, s));
+                    }
+                    block
+                })
+                .collect();
             let lanes = format!("{}x{}", self.precision.key(), K::LANES);
             self.group
-                .throughput(Throughput::Elements(K::LANES as u64 * STEPS))
+                .throughput(Throughput::Elements(landers as u64 * STEPS))
                 .bench_function(format!("kernel_{lanes}_{}", self.key), |b| {
                     b.iter_batched_ref(
-                        || block.clone(),
-                        |blk| {
+                        || blocks.clone(),
+                        |blocks| {
                             // As a sweep calls it: many steps at once, back after a step
                             // that decides a lane (the bench keeps it in the block, where
                             // it steps on, reported no more) or moves one far enough to
                             // be recentred (f32: as the sweep, it is).
-                            let mut taken = 0;
-                            while taken < STEPS {
-                                let advanced = K::advance(&params, blk, (STEPS - taken) as u32);
-                                taken += u64::from(advanced.steps);
-                                for i in (0..K::LANES).filter(|i| advanced.bits >> 16 & 1 << i != 0)
-                                {
-                                    blk.recentre(i);
+                            for blk in blocks.iter_mut() {
+                                let mut taken = 0;
+                                while taken < STEPS {
+                                    let advanced = K::advance(&params, blk, (STEPS - taken) as u32);
+                                    taken += u64::from(advanced.steps);
+                                    for i in
+                                        (0..K::LANES).filter(|i| advanced.bits >> 16 & 1 << i != 0)
+                                    {
+                                        blk.recentre(i);
+                                    }
                                 }
+                                black_box(&blk.t_s);
                             }
-                            black_box(&blk.t_s);
                         },
                         BatchSize::SmallInput,
                     );

@@ -9,7 +9,7 @@ use kernels::isa::{Isa, Precision};
 use std::io::Write;
 use std::process::Command;
 
-/// The kernel the banner names (`kernel f64x8 AVX2 (...`).
+/// The kernel the banner names (`kernel f64x4 AVX2 (...`).
 fn banner_kernel(stderr: &str) -> String {
     let at = stderr.find("kernel ").expect("the banner names the kernel") + "kernel ".len();
     stderr[at..]

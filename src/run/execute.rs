@@ -322,7 +322,7 @@ fn banner(
         range.end - range.start,
         scenario.seed,
         plan.kernel.name(),
-        plan.kernel.precision.lanes(),
+        plan.kernel.lanes(),
         if auto_kernel {
             "; the widest this CPU runs"
         } else {

@@ -55,7 +55,7 @@ table! {
             &format!("a time of at least step_s = {step_s} s and at most 1e6 s"),
             |x| x >= step_s && x <= 1e6,
         )?,
-        /// The lanes' precision: f64 (eight landers per lane value) or f32 (sixteen, faster;
+        /// The lanes' precision: f64 or f32 (twice the landers per lane value, faster;
         /// the shares a sweep reports agree with f64's within their sampling error, single
         /// samples near a decision threshold may end otherwise).
         precision: Precision = r.word(key, &Precision::ALL.map(|p| (p.key(), p)))?,

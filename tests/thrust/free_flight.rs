@@ -7,6 +7,7 @@ use crate::lander::sample_of;
 use glam::{DMat3, DQuat, DVec3};
 use kernels::block::Block;
 use kernels::isa::{Kernel, WithKernel};
+use kernels::params::Params;
 use touchdown::reference::{Model, initial_state};
 use touchdown::scenario::Scenario;
 use touchdown::slope::Surface;
@@ -236,8 +237,9 @@ fn reference_flight(scenario: &Scenario, case: &FlightCase) -> FlightErrors {
     e
 }
 
-/// The flights of `cases` in the lanes of one block of kernel `K` (one case per lane): the
-/// errors of each against the closed form, checked after every 10 steps.
+/// The flights of `cases` in the lanes of kernel `K` (one case per lane, in as many blocks as
+/// the kernel's width takes): the errors of each against the closed form, checked after
+/// every 10 steps.
 struct KernelFlights<'a> {
     scenario: &'a Scenario,
     cases: &'a [FlightCase],
@@ -251,52 +253,64 @@ impl WithKernel for KernelFlights<'_> {
         let mut params = kernel_params::<K>(&model);
         // The scenario has no thrusters: compile the thrust path in by hand.
         params.thrust = true;
-        let mut block = Block::<K>::new(&params);
-        assert!(self.cases.len() <= K::LANES);
-        let mut starts = Vec::new();
-        for (i, case) in self.cases.iter().enumerate() {
-            let sample = sample_of(posed(
-                case.attitude_deg,
-                case.velocity_m_s,
-                case.rates_deg_s,
-            ));
-            block.load(i, &lane_init(&model, &sample));
-            let thrust = constant_thrust(
-                DVec3::from_array(case.force_b_n),
-                DVec3::from_array(case.moment_b_n_m),
-            );
-            block.set_thrust(i, &lane_thrust(&thrust));
-            let surface = Surface::of(&sample);
-            starts.push(initial_state(&model, &surface, &sample).body);
-        }
-        let mut errors = vec![FlightErrors::default(); self.cases.len()];
-        loop {
-            let advanced = K::advance(&params, &mut block, 10);
-            assert_eq!(advanced.events, 0, "{}: no control event comes", K::NAME);
-            for (i, case) in self.cases.iter().enumerate() {
-                let t = block.t_s.lane(i);
-                let exact = flight_exact(&model, &starts[i], case, t);
-                errors[i].take(
-                    exact,
-                    DVec3::from_array(block.position_m.lane(i)),
-                    DVec3::from_array(block.velocity_m_s.lane(i)),
-                    DQuat::from_array(block.attitude.lane(i)),
-                    DVec3::from_array(block.rate_rad_s.lane(i)),
-                );
-                assert!(
-                    block
-                        .leg_step
-                        .iter()
-                        .all(|l| l.penetration_m.lane(i) <= 0.0),
-                    "the free flight touched the surface"
-                );
-            }
-            if (0..self.cases.len()).all(|i| block.t_s.lane(i) >= FLIGHT_S - 1e-9) {
-                break;
-            }
-        }
-        errors
+        self.cases
+            .chunks(K::LANES)
+            .flat_map(|cases| block_flights::<K>(&model, &params, cases))
+            .collect()
     }
+}
+
+/// The flights of `cases` (at most `K::LANES`) in one block of kernel `K`.
+fn block_flights<K: Kernel>(
+    model: &Model,
+    params: &Params<K>,
+    cases: &[FlightCase],
+) -> Vec<FlightErrors> {
+    let mut block = Block::<K>::new(params);
+    assert!(cases.len() <= K::LANES);
+    let mut starts = Vec::new();
+    for (i, case) in cases.iter().enumerate() {
+        let sample = sample_of(posed(
+            case.attitude_deg,
+            case.velocity_m_s,
+            case.rates_deg_s,
+        ));
+        block.load(i, &lane_init(model, &sample));
+        let thrust = constant_thrust(
+            DVec3::from_array(case.force_b_n),
+            DVec3::from_array(case.moment_b_n_m),
+        );
+        block.set_thrust(i, &lane_thrust(&thrust));
+        let surface = Surface::of(&sample);
+        starts.push(initial_state(model, &surface, &sample).body);
+    }
+    let mut errors = vec![FlightErrors::default(); cases.len()];
+    loop {
+        let advanced = K::advance(params, &mut block, 10);
+        assert_eq!(advanced.events, 0, "{}: no control event comes", K::NAME);
+        for (i, case) in cases.iter().enumerate() {
+            let t = block.t_s.lane(i);
+            let exact = flight_exact(model, &starts[i], case, t);
+            errors[i].take(
+                exact,
+                DVec3::from_array(block.position_m.lane(i)),
+                DVec3::from_array(block.velocity_m_s.lane(i)),
+                DQuat::from_array(block.attitude.lane(i)),
+                DVec3::from_array(block.rate_rad_s.lane(i)),
+            );
+            assert!(
+                block
+                    .leg_step
+                    .iter()
+                    .all(|l| l.penetration_m.lane(i) <= 0.0),
+                "the free flight touched the surface"
+            );
+        }
+        if (0..cases.len()).all(|i| block.t_s.lane(i) >= FLIGHT_S - 1e-9) {
+            break;
+        }
+    }
+    errors
 }
 
 #[test]

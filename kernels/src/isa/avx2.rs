@@ -1,13 +1,19 @@
-//! Two AVX2 registers of landers, multiply-adds fused (FMA3): eight in f64 (`F64x8Avx2`),
-//! sixteen in f32 (`F32x16Avx2`). Both lane types come from one macro, so they are the same
+//! One AVX2 register of landers, multiply-adds fused (FMA3): four in f64 (`F64x4Avx2`),
+//! eight in f32 (`F32x8Avx2`). Both lane types come from one macro, so they are the same
 //! code over the two precisions.
+//!
+//! Two registers a lane value (eight f64 or sixteen f32 landers, as AVX-512 holds in one)
+//! ran slower: the step keeps more values live than AVX2's sixteen registers hold, and at
+//! two registers a value it spilled more (a third of the hot loop's time fell on stack
+//! loads and stores in the MuJoCo-matched scenario). Measured on the 2-core AMD EPYC
+//! machine, 1 thread, alternated, the same bytes: README, "One register a lane value".
 
 // What the kernels are compiled for: x86-64-v3 (the same list as `compiled_kernel!` below).
 x86_features!(
     "avx2", "avx", "fma", "bmi1", "bmi2", "lzcnt", "movbe", "popcnt", "f16c"
 );
 
-/// The lane type `$lane` of `$n` lanes of `$e` in two registers `$v`, with the intrinsics
+/// The lane type `$lane` of `$n` lanes of `$e` in one register `$v`, with the intrinsics
 /// of its precision.
 macro_rules! avx2_lane {
     (
@@ -30,8 +36,8 @@ macro_rules! avx2_lane {
 
         $(#[$doc])*
         #[derive(Clone, Copy)]
-        #[repr(C, align(64))]
-        pub struct $lane([$v; 2]);
+        #[repr(transparent)]
+        pub struct $lane($v);
 
         compiled_kernel!($lane, $name, "avx2,avx,fma,bmi1,bmi2,lzcnt,movbe,popcnt,f16c");
 
@@ -39,26 +45,23 @@ macro_rules! avx2_lane {
             $lane,
             $e,
             |m| {
-                let [lo, hi] = m.0;
                 #[allow(clippy::cast_sign_loss)]
                 unsafe {
-                    ($movemask(lo) | ($movemask(hi) << ($n / 2))) as u32
+                    $movemask(m.0) as u32
                 }
             }
         );
 
-        /// Applies an intrinsic to both halves.
-        macro_rules! halves {
+        /// Applies an intrinsic to the register.
+        macro_rules! register {
             ($f:path, $a:expr) => {
-                $lane(unsafe { [$f($a.0[0]), $f($a.0[1])] })
+                $lane(unsafe { $f($a.0) })
             };
             ($f:path, $a:expr, $b:expr) => {
-                $lane(unsafe { [$f($a.0[0], $b.0[0]), $f($a.0[1], $b.0[1])] })
+                $lane(unsafe { $f($a.0, $b.0) })
             };
             ($f:path, $a:expr, $b:expr, $c:expr) => {
-                $lane(unsafe {
-                    [$f($a.0[0], $b.0[0], $c.0[0]), $f($a.0[1], $b.0[1], $c.0[1])]
-                })
+                $lane(unsafe { $f($a.0, $b.0, $c.0) })
             };
         }
 
@@ -68,7 +71,7 @@ macro_rules! avx2_lane {
                     type Output = Self;
                     #[inline(always)]
                     fn $f(self, o: Self) -> Self {
-                        halves!($intrinsic, self, o)
+                        register!($intrinsic, self, o)
                     }
                 }
                 impl $assign for $lane {
@@ -89,7 +92,7 @@ macro_rules! avx2_lane {
             type Output = Self;
             #[inline(always)]
             fn div(self, o: Self) -> Self {
-                halves!($div, self, o)
+                register!($div, self, o)
             }
         }
 
@@ -97,7 +100,7 @@ macro_rules! avx2_lane {
             type Output = Self;
             #[inline(always)]
             fn neg(self) -> Self {
-                halves!($xor, self, Self::splat(-0.0))
+                register!($xor, self, Self::splat(-0.0))
             }
         }
 
@@ -105,7 +108,7 @@ macro_rules! avx2_lane {
             type Output = Self;
             #[inline(always)]
             fn not(self) -> Self {
-                halves!($xor, self, Self::from_array([<$e>::from_bits(!0); $n]))
+                register!($xor, self, Self::from_array([<$e>::from_bits(!0); $n]))
             }
         }
 
@@ -114,7 +117,7 @@ macro_rules! avx2_lane {
             /// the kernels too).
             #[inline(always)]
             fn from_array(a: [$e; $n]) -> Self {
-                Self(unsafe { std::mem::transmute::<[$e; $n], [$v; 2]>(a) })
+                Self(unsafe { std::mem::transmute::<[$e; $n], $v>(a) })
             }
             /// The lanes, in place.
             #[inline(always)]
@@ -132,7 +135,7 @@ macro_rules! avx2_lane {
             ($f:ident, $op:ident) => {
                 #[inline(always)]
                 fn $f(self, o: Self) -> Self {
-                    halves!($cmp::<$op>, self, o)
+                    register!($cmp::<$op>, self, o)
                 }
             };
         }
@@ -140,7 +143,7 @@ macro_rules! avx2_lane {
         impl Lane for $lane {
             const LANES: usize = $n;
             type Mask = Self;
-            const ZERO: Self = Self(unsafe { std::mem::transmute::<[$e; $n], [$v; 2]>([0.0; $n]) });
+            const ZERO: Self = Self(unsafe { std::mem::transmute::<[$e; $n], $v>([0.0; $n]) });
             const MIN_POSITIVE: f64 = <$e>::MIN_POSITIVE as f64;
 
             #[inline(always)]
@@ -151,28 +154,28 @@ macro_rules! avx2_lane {
             lane_access!($e);
             #[inline(always)]
             fn mul_add(self, a: Self, b: Self) -> Self {
-                halves!($fmadd, self, a, b)
+                register!($fmadd, self, a, b)
             }
             #[inline(always)]
             fn mul_sub(self, a: Self, b: Self) -> Self {
-                halves!($fmsub, self, a, b)
+                register!($fmsub, self, a, b)
             }
             #[inline(always)]
             fn mul_neg_add(self, a: Self, b: Self) -> Self {
-                halves!($fnmadd, self, a, b)
+                register!($fnmadd, self, a, b)
             }
             #[inline(always)]
             fn mul_neg_sub(self, a: Self, b: Self) -> Self {
-                halves!($fnmsub, self, a, b)
+                register!($fnmsub, self, a, b)
             }
             #[inline(always)]
             fn sqrt(self) -> Self {
-                halves!($sqrt, self)
+                register!($sqrt, self)
             }
             #[inline(always)]
             fn abs(self) -> Self {
                 // Clears the sign bits.
-                halves!($andnot, Self::splat(-0.0), self)
+                register!($andnot, Self::splat(-0.0), self)
             }
             #[inline(always)]
             fn min(self, o: Self) -> Self {
@@ -184,11 +187,11 @@ macro_rules! avx2_lane {
             }
             #[inline(always)]
             fn fast_min(self, o: Self) -> Self {
-                halves!($min, self, o)
+                register!($min, self, o)
             }
             #[inline(always)]
             fn fast_max(self, o: Self) -> Self {
-                halves!($max, self, o)
+                register!($max, self, o)
             }
             compare!(simd_eq, _CMP_EQ_OQ);
             compare!(simd_lt, _CMP_LT_OQ);
@@ -197,22 +200,22 @@ macro_rules! avx2_lane {
             compare!(simd_ge, _CMP_GE_OQ);
             #[inline(always)]
             fn is_nan(self) -> Self {
-                halves!($cmp::<_CMP_UNORD_Q>, self, self)
+                register!($cmp::<_CMP_UNORD_Q>, self, self)
             }
             #[inline(always)]
             fn blend(mask: Self, a: Self, b: Self) -> Self {
-                halves!($blendv, b, a, mask)
+                register!($blendv, b, a, mask)
             }
         }
     };
 }
 
-/// Eight f64 landers.
-pub mod f64x8 {
+/// Four f64 landers.
+pub mod f64x4 {
     avx2_lane!(
-        /// Eight f64 lanes in two `__m256d`. Only made on a CPU with the features of
+        /// Four f64 lanes in one `__m256d`. Only made on a CPU with the features of
         /// `FEATURES`.
-        F64x8Avx2, "f64x8 AVX2", __m256d, f64, 8,
+        F64x4Avx2, "f64x4 AVX2", __m256d, f64, 4,
         movemask _mm256_movemask_pd,
         add _mm256_add_pd, sub _mm256_sub_pd, mul _mm256_mul_pd, div _mm256_div_pd,
         and _mm256_and_pd, or _mm256_or_pd, xor _mm256_xor_pd, andnot _mm256_andnot_pd,
@@ -222,12 +225,12 @@ pub mod f64x8 {
     );
 }
 
-/// Sixteen f32 landers.
-pub mod f32x16 {
+/// Eight f32 landers.
+pub mod f32x8 {
     avx2_lane!(
-        /// Sixteen f32 lanes in two `__m256`. Only made on a CPU with the features of
+        /// Eight f32 lanes in one `__m256`. Only made on a CPU with the features of
         /// `FEATURES`.
-        F32x16Avx2, "f32x16 AVX2", __m256, f32, 16,
+        F32x8Avx2, "f32x8 AVX2", __m256, f32, 8,
         movemask _mm256_movemask_ps,
         add _mm256_add_ps, sub _mm256_sub_ps, mul _mm256_mul_ps, div _mm256_div_ps,
         and _mm256_and_ps, or _mm256_or_ps, xor _mm256_xor_ps, andnot _mm256_andnot_ps,
@@ -237,5 +240,5 @@ pub mod f32x16 {
     );
 }
 
-pub use f32x16::F32x16Avx2;
-pub use f64x8::F64x8Avx2;
+pub use f32x8::F32x8Avx2;
+pub use f64x4::F64x4Avx2;

@@ -10,8 +10,10 @@
 //!
 //! The AVX-512 and AVX2 kernels of a precision fuse their multiply-adds and give the same
 //! bits; the SSE2 kernels (x86-64 without AVX2, hence without FMA) round products and sums
-//! apart, so their results differ from theirs in the last bits. f32 kernels hold sixteen
-//! landers per lane value, f64 kernels eight; their results differ (see `Precision`).
+//! apart, so their results differ from theirs in the last bits. A lander steps the same
+//! whatever lane or block holds it, so the width of a lane value (eight f64 or sixteen f32
+//! landers with AVX-512 and the portable kernels, four or eight with AVX2) changes no
+//! bits. f32 and f64 results differ (see `Precision`).
 
 /// `FEATURES` (the CPU features a kernel is compiled for, the same list as its
 /// `#[target_feature]`) and `missing()` (those this CPU lacks).
@@ -198,7 +200,7 @@ pub trait WithKernel {
 pub enum Isa {
     /// AVX-512 (x86-64-v4): one register holds the eight lanes.
     Avx512,
-    /// AVX2 with FMA (x86-64-v3): two registers.
+    /// AVX2 with FMA (x86-64-v3): one register holds four lanes (f64) or eight (f32).
     Avx2,
     /// `wide` for the compiled target: SSE2 on plain x86-64, NEON on aarch64.
     Portable,
@@ -280,15 +282,15 @@ impl Isa {
     }
 }
 
-/// The precision of the lanes: f64 (eight landers per lane value) or f32 (sixteen). The
+/// The precision of the lanes: f64, or f32 (twice the landers per lane value). The
 /// physics is the same code; f32 rounds every operation to 24 bits instead of 53, so single
 /// samples near a decision threshold may end otherwise, while the shares a sweep reports
 /// agree within their sampling error (measured in the README).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Precision {
-    /// Eight f64 landers per lane value.
+    /// f64 landers: eight per lane value (AVX-512, portable), four (AVX2).
     F64,
-    /// Sixteen f32 landers per lane value.
+    /// f32 landers: sixteen per lane value (AVX-512, portable), eight (AVX2).
     F32,
 }
 
@@ -309,15 +311,6 @@ impl Precision {
     #[must_use]
     pub fn from_key(key: &str) -> Option<Precision> {
         Precision::ALL.into_iter().find(|p| p.key() == key)
-    }
-
-    /// Landers per lane value (the same for every instruction set).
-    #[must_use]
-    pub fn lanes(self) -> usize {
-        match self {
-            Precision::F64 => <wide::f64x8 as Lane>::LANES,
-            Precision::F32 => <wide::f32x16 as Lane>::LANES,
-        }
     }
 }
 
@@ -347,9 +340,9 @@ impl KernelKind {
             #[cfg(target_arch = "x86_64")]
             (Isa::Avx512, Precision::F32) => w.run::<avx512::F32x16Avx512>(),
             #[cfg(target_arch = "x86_64")]
-            (Isa::Avx2, Precision::F64) => w.run::<avx2::F64x8Avx2>(),
+            (Isa::Avx2, Precision::F64) => w.run::<avx2::F64x4Avx2>(),
             #[cfg(target_arch = "x86_64")]
-            (Isa::Avx2, Precision::F32) => w.run::<avx2::F32x16Avx2>(),
+            (Isa::Avx2, Precision::F32) => w.run::<avx2::F32x8Avx2>(),
             (_, Precision::F64) => w.run::<wide::f64x8>(),
             (_, Precision::F32) => w.run::<wide::f32x16>(),
         }
@@ -361,11 +354,24 @@ impl KernelKind {
         match (self.isa, self.precision) {
             (Isa::Avx512, Precision::F64) => "f64x8 AVX-512",
             (Isa::Avx512, Precision::F32) => "f32x16 AVX-512",
-            (Isa::Avx2, Precision::F64) => "f64x8 AVX2",
-            (Isa::Avx2, Precision::F32) => "f32x16 AVX2",
+            (Isa::Avx2, Precision::F64) => "f64x4 AVX2",
+            (Isa::Avx2, Precision::F32) => "f32x8 AVX2",
             (Isa::Portable, Precision::F64) => <wide::f64x8 as Kernel>::NAME,
             (Isa::Portable, Precision::F32) => <wide::f32x16 as Kernel>::NAME,
         }
+    }
+
+    /// Landers per lane value (per block).
+    #[must_use]
+    pub fn lanes(self) -> usize {
+        struct Lanes;
+        impl WithKernel for Lanes {
+            type Output = usize;
+            fn run<K: Kernel>(self) -> usize {
+                K::LANES
+            }
+        }
+        self.dispatch(Lanes)
     }
 
     /// Whether this kernel fuses its multiply-adds.
