@@ -88,6 +88,7 @@ pub enum Command {
 /// calls this from its `main`.
 #[must_use]
 pub fn main() -> std::process::ExitCode {
+    crate::run::memory::one_malloc_arena();
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => std::process::ExitCode::SUCCESS,
