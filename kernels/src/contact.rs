@@ -105,10 +105,12 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
     );
 
     if let (true, Some(h)) = (DAMPERS, &p.honeycomb) {
-        let cap = friction_cap::<L, REGOLITH>(p, normal_n, passive);
-        let friction_now =
-            friction * (cap / friction.length().max(cap).max(L::splat(L::MIN_POSITIVE)));
-        let load_n = (normal * normal_n + friction_now).dot(strut_up);
+        let friction_on_strut = honeycomb::Friction {
+            magnitude_n: friction.length(),
+            along_strut_n: friction.dot(strut_up),
+            mu: p.friction_coefficient,
+            passive_n: passive,
+        };
         // The normal force falls with the stroke along the contact's spring: the plane's,
         // or the soil's unloading line.
         let spring_n_per_m = match (REGOLITH, &p.soil) {
@@ -120,10 +122,10 @@ pub fn leg_force<L: Lane, const DAMPERS: bool, const REGOLITH: bool>(
             h,
             contact,
             leg.stroke_m,
-            load_n,
             normal_n,
             normal.dot(strut_up),
             relief,
+            &friction_on_strut,
         );
         leg.absorbed_j += honeycomb::absorbed_between(h, leg.stroke_m, leg.stroke_m + ds);
         leg.stroke_m += ds;

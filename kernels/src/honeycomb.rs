@@ -53,26 +53,59 @@ pub fn piece_end<L: Lane>(h: &HoneycombParams<L>, stroke_m: L) -> L {
         .select(h.peak_stroke_m, end)
 }
 
-/// The stroke increment that caps the axial load at the crush force, and the normal force
-/// after it (see the reference's `honeycomb::crush`). Lanes outside `mask` do not crush.
+/// The friction of a leg's footpad as the damper crushes (the reference's
+/// `honeycomb::Friction`): the friction spring's force before its cap, its cap
+/// `mu N + passive`.
+#[derive(Clone, Copy)]
+pub struct Friction<L: Lane> {
+    /// Magnitude of the friction spring's force, N.
+    pub magnitude_n: L,
+    /// Its component along the strut (footpad to hip), N.
+    pub along_strut_n: L,
+    /// Friction coefficient `mu`.
+    pub mu: L,
+    /// What the cap holds besides `mu N` (regolith's passive pressure; 0 on the plane), N.
+    pub passive_n: L,
+}
+
+/// The stroke increment that brings the axial load to the crush force, the friction
+/// sticking or slipping after it, and the normal force after it (see the reference's
+/// `honeycomb::crush`, which says why). Lanes outside `mask` do not crush.
 #[inline(always)]
 #[must_use]
 pub fn crush<L: Lane>(
     h: &HoneycombParams<L>,
     mask: L::Mask,
     stroke_m: L,
-    load_n: L,
     normal_force_n: L,
     strut_normal: L,
     relief_n_per_m: L,
+    friction: &Friction<L>,
 ) -> (L, L) {
     let zero = L::splat(0.0);
+    let tiny = L::splat(L::MIN_POSITIVE);
     let crush_n = crush_force(h, stroke_m);
+    let cap = friction.mu.mul_add(normal_force_n, friction.passive_n);
+    let capped = cap / friction.magnitude_n.max(cap).max(tiny);
+    let load_n = normal_force_n.mul_add(strut_normal, friction.along_strut_n * capped);
     let yields = mask
         & load_n.simd_gt(crush_n)
         & strut_normal.simd_ge(L::splat(MIN_STRUT_NORMAL))
         & normal_force_n.simd_gt(zero);
-    let target_n = normal_force_n * crush_n / load_n;
+    let sticking = (crush_n - friction.along_strut_n) / strut_normal;
+    let along = friction.along_strut_n / friction.magnitude_n.max(tiny);
+    let slip_denominator = friction.mu.mul_add(along, strut_normal);
+    let sticks = sticking.simd_ge(zero)
+        & friction
+            .magnitude_n
+            .simd_le(friction.mu.mul_add(sticking, friction.passive_n));
+    let target_n = sticks.select(
+        sticking,
+        slip_denominator.simd_gt(zero).select(
+            friction.passive_n.mul_neg_add(along, crush_n) / slip_denominator,
+            normal_force_n * crush_n / load_n,
+        ),
+    );
     let ds = ((normal_force_n - target_n) / (strut_normal * relief_n_per_m))
         .min(piece_end(h, stroke_m) - stroke_m)
         .max(zero);

@@ -116,9 +116,12 @@ pub fn leg_force(
         - velocity_t * contact.friction_damping_n_s_per_m;
 
     if let Some(h) = honeycomb {
-        let cap = friction_cap(contact, soil, normal_n, passive);
-        let friction_now = friction * (cap / friction.length().max(cap).max(f64::MIN_POSITIVE));
-        let load_n = (normal * normal_n + friction_now).dot(strut_up);
+        let friction_on_strut = honeycomb::Friction {
+            magnitude_n: friction.length(),
+            along_strut_n: friction.dot(strut_up),
+            mu: contact.friction_coefficient,
+            passive_n: passive,
+        };
         // The normal force falls with the stroke along the contact's spring: the plane's,
         // or the soil's unloading line.
         let spring_n_per_m = soil.map_or(contact.stiffness_n_per_m, |s| s.unloading_n_per_m);
@@ -126,10 +129,10 @@ pub fn leg_force(
         let (ds, relieved) = honeycomb::crush(
             h,
             leg.stroke_m,
-            load_n,
             normal_n,
             normal.dot(strut_up),
             relief,
+            &friction_on_strut,
         );
         leg.absorbed_j += honeycomb::absorbed_between(h, leg.stroke_m, leg.stroke_m + ds);
         leg.stroke_m += ds;

@@ -437,7 +437,7 @@ run_with() {
 # Comparing.
 
 # The engine string a set's binary writes (`touchdown.engine`, Parquet's created_by):
-# as its report of the default sweep names it ("2000 samples, seed 1, touchdown 0.7.0.").
+# as its report of the default sweep names it ("2000 samples, seed 1, touchdown 0.8.0.").
 engine_of() {
     sed -n 's/^[0-9]* samples, seed [0-9]*, \(.*\)\.$/\1/p' "$work/$1/cmd/report-default.stdout" \
         2>/dev/null | head -n 1

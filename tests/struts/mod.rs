@@ -9,6 +9,7 @@ use std::path::Path;
 
 mod at_rest;
 mod bottoming;
+mod crush;
 mod limits;
 mod peaks;
 mod shown;
