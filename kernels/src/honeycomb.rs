@@ -102,7 +102,7 @@ pub fn crush<L: Lane>(
     let target_n = sticks.select(
         sticking,
         slip_denominator.simd_gt(zero).select(
-            friction.passive_n.mul_neg_add(along, crush_n) / slip_denominator,
+            (friction.passive_n.mul_neg_add(along, crush_n) / slip_denominator).max(zero),
             normal_force_n * crush_n / load_n,
         ),
     );

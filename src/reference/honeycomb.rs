@@ -95,7 +95,9 @@ pub struct Friction {
 /// for a footpad that slips on the plane: where friction stuck, the load stayed above the
 /// crush force by `f_s (1 - F_c / load)`, the more the longer the step.) Where the slip's
 /// denominator is not positive (a strut far from the normal, friction against it: the load
-/// does not fall with `N`), `N` scales by `F_c / load`. The increment stops at the end of
+/// does not fall with `N`), `N` scales by `F_c / load`; where the passive share alone holds
+/// the strut above the crush force, `N'` is 0 (no normal force can bring the load lower:
+/// the footpad then holds with its passive share). The increment stops at the end of
 /// the piece of the force curve it starts in, so a stronger stage holds from the next
 /// step. Returns the increment and the normal force after it.
 #[inline]
@@ -122,7 +124,7 @@ pub fn crush(
         if sticking >= 0.0 && friction.magnitude_n <= friction.mu * sticking + friction.passive_n {
             sticking
         } else if slip_denominator > 0.0 {
-            (crush_n - friction.passive_n * along) / slip_denominator
+            ((crush_n - friction.passive_n * along) / slip_denominator).max(0.0)
         } else {
             normal_force_n * crush_n / load_n
         };
@@ -242,6 +244,20 @@ mod tests {
                 );
             }
         }
+        // A passive share whose part along the strut alone passes the crush force (200 N of
+        // passive pressure, friction along the strut): the normal force falls to 0, never
+        // below.
+        let passive = Friction {
+            magnitude_n: 400.0,
+            along_strut_n: 300.0,
+            mu: 0.6,
+            passive_n: 200.0,
+        };
+        let (ds, n) = crush(&h, 0.01, 400.0, 1.0, 5.0e4, &passive);
+        assert!(
+            ds > 0.0 && n.abs() < 1e-9,
+            "normal force {n} after the crush"
+        );
         // Scaling N by F_c / load, as before, left a sticking footpad's load above it: 400 N
         // normal and 30 N of sticking friction along a strut along the normal gave 430 N;
         // scaled, N = 93.0 N and the load 123.0 N.
