@@ -44,13 +44,12 @@ pub fn check_fits(bytes: u64, what: impl FnOnce() -> String) -> anyhow::Result<(
 ///
 /// glibc gives each thread an arena of its own (up to 8 a core), and each arena keeps the
 /// peak of what its thread once held: the rows and columns a worker builds, the Parquet
-/// pages it encodes. So the peak memory of a sweep grew with its threads (the default 2e5
-/// on the 2-core machine, Arrow: 28 MB at 1 thread, 47 at 2, 71 at 8, 117 at 16; Parquet
-/// 46, 72, 161, 170), and with one arena it does not (Arrow 28, 28, 31, 42; Parquet 45,
-/// 47, 49, 66). Nothing allocates in a step: a sample costs about two allocations, which
-/// glibc's per-thread cache mostly serves without the arena's lock, and all of malloc and
-/// free took 0.2 % of the sweep's instructions (callgrind, 5,000 samples), so the one lock
-/// is no serial share worth counting. Elsewhere (musl, other systems) this does nothing.
+/// pages it encodes. So the peak memory of a sweep grew with its threads, and with one arena
+/// it does not (README, "One malloc arena", has the figures). Nothing allocates in a step:
+/// a sample costs about two allocations, which glibc's per-thread cache mostly serves
+/// without the arena's lock, and all of malloc and free took 0.2 % of the sweep's
+/// instructions (callgrind, 5,000 samples), so the one lock is no serial share worth
+/// counting. Elsewhere (musl, other systems) this does nothing.
 pub fn one_malloc_arena() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     if std::env::var_os("MALLOC_ARENA_MAX").is_none() {

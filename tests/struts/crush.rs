@@ -34,7 +34,7 @@ fn a_crushing_cartridge_holds_the_axial_load_at_the_crush_force() {
     let dir = TempDir::new("struts-crush");
     let mut crushed = 0;
     for psi in [50.0, 90.0, 140.0] {
-        let crush_n = psi * 6_894.757_293_168_361 * 4.5e-4;
+        let crush_n = psi * touchdown::scenario::PSI_PA * 4.5e-4;
         for (name, extra) in [("fixed", ""), ("controlled", "tolerance_m_s = 1e-4")] {
             let file = format!("c{psi}-{name}");
             dir.write(&format!("{file}.toml"), &cartridges(psi, extra));
